@@ -1,0 +1,51 @@
+// The subcommands of vesselmesh, one file each. Each registers itself on the app and returns
+// the action main() runs when it was chosen.
+#pragma once
+
+#include "cli_support.h"
+
+#include "analysis/open_ends.h"
+#include "io/surface.h"
+#include "mesh/clean.h"
+#include "mesh/statistics.h"
+
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vesselmesh::cli {
+
+struct Command {
+  CLI::App* app;
+  Action action;
+};
+
+Command add_info_command(CLI::App& parent);
+Command add_synth_command(CLI::App& parent);
+Command add_demo_command(CLI::App& parent);
+
+// Reading, checking and describing a surface: what `info` does, reused by `demo`.
+struct SurfaceCheckOptions {
+  std::optional<std::string> units;
+  std::string label_array;
+  mesh::CleanOptions clean;
+  analysis::OpenEndsOptions ends;
+};
+
+struct CheckedSurface {
+  io::SurfaceFile file;  // the mesh in it is the repaired one
+  mesh::CleanReport repairs;
+  mesh::Statistics statistics;
+  std::vector<analysis::OpenEnd> ends;
+};
+
+CheckedSurface check_surface(const std::string& path, const SurfaceCheckOptions& options,
+                             const Reporter& reporter);
+Json describe(const CheckedSurface& surface);
+std::string describe_as_text(const CheckedSurface& surface);
+// The repaired surface with the input's point and cell data carried along.
+void write_repaired(const std::string& path, const CheckedSurface& surface);
+
+}  // namespace vesselmesh::cli

@@ -1,0 +1,163 @@
+// vesselmesh synth: analytic and synthetic vessel shapes, the fixtures of the tests.
+#include "commands.h"
+
+#include "mesh/error.h"
+#include "mesh/statistics.h"
+#include "synth/bifurcation.h"
+#include "synth/shapes.h"
+
+#include <fmt/format.h>
+
+#include <iostream>
+#include <memory>
+
+namespace vesselmesh::cli {
+namespace {
+
+struct ShapeCommon {
+  std::string output;
+  double resolution = 0.0;
+  double jitter = 0.0;
+  uint64_t seed = 1;
+  CommonOptions common;
+};
+
+// Options every shape has; `resolution` starts at the shape's default.
+void add_shape_options(CLI::App& app, ShapeCommon& c, double default_resolution) {
+  c.resolution = default_resolution;
+  app.add_option("-o,--output", c.output, "Output surface (.stl, .vtp or .msh), lengths in mm")->required();
+  app.add_option("--resolution", c.resolution, "Target edge length (mm)")->capture_default_str();
+  app.add_option("--jitter", c.jitter,
+                 "Move every point along the surface by a random fraction (up to this) of its edge length, "
+                 "for an irregular triangulation (0 to 0.45)")
+      ->capture_default_str();
+  app.add_option("--seed", c.seed, "Seed of the random diagonals and jitter")->capture_default_str();
+  add_common_options(app, c.common);
+}
+
+int write_shape(const ShapeCommon& c, const std::string& shape, const TriMesh& mesh) {
+  io::surface_format(c.output);
+  io::write_surface(c.output, mesh);
+  TerminalReporter reporter(c.common.quiet);
+  const mesh::Statistics st = mesh::statistics(mesh);
+  if (c.common.json) {
+    print_json({{"shape", shape}, {"output", c.output}, {"units", "mm"}, {"points", st.points},
+                {"triangles", st.triangles}, {"closed", st.closed}, {"boundary_loops", st.boundary_loops},
+                {"area", round_to(st.area)}, {"edge_length", {{"min", round_to(st.edge_length.min)},
+                                                              {"mean", round_to(st.edge_length.mean)},
+                                                              {"max", round_to(st.edge_length.max)}}},
+                {"min_angle_deg", round_to(st.min_angle.min)}});
+  } else {
+    reporter.info(fmt::format("wrote {} ({} points, {} triangles, mean edge {:.3g} mm) to {}", shape, st.points,
+                              st.triangles, st.edge_length.mean, c.output));
+  }
+  return 0;
+}
+
+// The shape's generator, called with the options every shape shares filled in.
+template <typename Options>
+std::function<TriMesh(Options, const ShapeCommon&)> with_common_options(TriMesh (*make)(const Options&)) {
+  return [make](Options o, const ShapeCommon& c) {
+    o.resolution = c.resolution;
+    o.jitter = c.jitter;
+    o.seed = c.seed;
+    return make(o);
+  };
+}
+
+template <typename Options, typename Make>
+Command shape_command(CLI::App& parent, const std::string& name, const std::string& help, double resolution,
+                      std::function<void(CLI::App&, Options&)> add_options, Make make) {
+  CLI::App* app = parent.add_subcommand(name, help);
+  struct State {
+    Options shape;
+    ShapeCommon common;
+  };
+  auto state = std::make_shared<State>();
+  add_options(*app, state->shape);
+  add_shape_options(*app, state->common, resolution);
+  return {app, [state, name, make] {
+            const ShapeCommon& c = state->common;
+            return write_shape(c, name, make(state->shape, c));
+          }};
+}
+
+}  // namespace
+
+Command add_synth_command(CLI::App& parent) {
+  CLI::App* app = parent.add_subcommand("synth", "Write an analytic or synthetic vessel shape (mm)");
+  app->require_subcommand(1);
+  std::vector<Command> shapes;
+
+  shapes.push_back(shape_command<synth::SphereOptions>(
+      *app, "sphere", "Geodesic sphere", synth::SphereOptions{}.resolution,
+      [](CLI::App& a, synth::SphereOptions& o) { a.add_option("--radius", o.radius, "Radius (mm)")->capture_default_str(); },
+      with_common_options(&synth::sphere)));
+  shapes.push_back(shape_command<synth::CylinderOptions>(
+      *app, "cylinder", "Straight pipe along +z, open ends (or flat caps with --capped)",
+      synth::CylinderOptions{}.resolution,
+      [](CLI::App& a, synth::CylinderOptions& o) {
+        a.add_option("--radius", o.radius, "Radius (mm)")->capture_default_str();
+        a.add_option("--length", o.length, "Length (mm)")->capture_default_str();
+        a.add_flag("--capped", o.capped, "Close the ends with flat caps (labels: 1 wall, 2 and 3 caps)");
+        a.add_flag("!--regular-diagonals", o.random_diagonals, "Alternate the grid's diagonals instead of random ones");
+      },
+      with_common_options(&synth::cylinder)));
+  shapes.push_back(shape_command<synth::TorusOptions>(
+      *app, "torus", "Torus about the z axis", synth::TorusOptions{}.resolution,
+      [](CLI::App& a, synth::TorusOptions& o) {
+        a.add_option("--major-radius", o.major_radius, "Distance from the axis to the tube's centre (mm)")->capture_default_str();
+        a.add_option("--minor-radius", o.minor_radius, "Tube radius (mm)")->capture_default_str();
+        a.add_flag("!--regular-diagonals", o.random_diagonals, "Alternate the grid's diagonals instead of random ones");
+      },
+      with_common_options(&synth::torus)));
+  shapes.push_back(shape_command<synth::EllipsoidOptions>(
+      *app, "ellipsoid", "Ellipsoid x2/a2 + y2/b2 + z2/c2 = 1", synth::EllipsoidOptions{}.resolution,
+      [](CLI::App& a, synth::EllipsoidOptions& o) {
+        a.add_option_function<std::vector<double>>(
+             "--semi-axes", [&o](const std::vector<double>& v) { o.semi_axes = Vec3(v[0], v[1], v[2]); },
+             "Semi-axes a,b,c (mm), default 6,4,3")
+            ->expected(3)
+            ->delimiter(',');
+      },
+      with_common_options(&synth::ellipsoid)));
+  shapes.push_back(shape_command<synth::BendOptions>(
+      *app, "bend", "Bent pipe in the xy plane: straight inlet along +y, an arc, a straight outlet",
+      synth::BendOptions{}.resolution,
+      [](CLI::App& a, synth::BendOptions& o) {
+        a.add_option("--radius", o.radius, "Pipe radius (mm)")->capture_default_str();
+        a.add_option("--bend-radius", o.bend_radius, "Radius of the arc of the centerline (mm)")->capture_default_str();
+        a.add_option("--angle", o.angle_deg, "Turning angle (deg)")->capture_default_str();
+        a.add_option("--inlet-length", o.inlet_length, "Straight length before the bend (mm)")->capture_default_str();
+        a.add_option("--outlet-length", o.outlet_length, "Straight length after the bend (mm)")->capture_default_str();
+        a.add_flag("!--regular-diagonals", o.random_diagonals, "Alternate the grid's diagonals instead of random ones");
+      },
+      with_common_options(&synth::bend)));
+  shapes.push_back(shape_command<synth::BifurcationOptions>(
+      *app, "bifurcation", "Y bifurcation: a parent pipe along +z splitting into two daughters in the xz plane",
+      synth::BifurcationOptions{}.resolution,
+      [](CLI::App& a, synth::BifurcationOptions& o) {
+        a.add_option("--radius", o.radius, "Parent radius (mm)")->capture_default_str();
+        a.add_option_function<std::vector<double>>(
+             "--daughter-radii", [&o](const std::vector<double>& v) { o.daughter_radius = {v[0], v[1]}; },
+             "Daughter radii r1,r2 (mm), default 2.4,2.4")
+            ->expected(2)
+            ->delimiter(',');
+        a.add_option_function<std::vector<double>>(
+             "--angles", [&o](const std::vector<double>& v) { o.angle_deg = {v[0], v[1]}; },
+             "Angles of the daughters from the parent's axis a1,a2 (deg), default 35,35")
+            ->expected(2)
+            ->delimiter(',');
+        a.add_option("--parent-length", o.parent_length, "Parent length (mm)")->capture_default_str();
+        a.add_option("--daughter-length", o.daughter_length, "Daughter length (mm)")->capture_default_str();
+        a.add_option("--blend", o.blend, "Radius of the smooth blend at the junction (mm)")->capture_default_str();
+      },
+      with_common_options(&synth::bifurcation)));
+  return {app, [shapes] {
+            for (const Command& shape : shapes)
+              if (shape.app->parsed()) return shape.action();
+            throw OptionError("name a shape: sphere, cylinder, torus, ellipsoid, bend or bifurcation");
+          }};
+}
+
+}  // namespace vesselmesh::cli

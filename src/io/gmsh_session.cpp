@@ -1,0 +1,71 @@
+#include "io/gmsh_session.h"
+
+#include "mesh/error.h"
+
+#include <gmsh.h>
+
+#include <exception>
+#include <vector>
+
+namespace vesselmesh::io {
+namespace {
+std::mutex& gmsh_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+// Guarded by the mutex. After an error Gmsh can keep a broken model (a failed open leaves
+// later opens empty), so an error finalizes it and the next session starts afresh.
+bool g_initialized = false;
+bool g_failed = false;
+}  // namespace
+
+GmshSession::GmshSession() : lock_(gmsh_mutex()) {
+  if (g_initialized && g_failed) {
+    gmsh::finalize();
+    g_initialized = false;
+  }
+  g_failed = false;
+  if (!g_initialized) {
+    gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
+    g_initialized = true;
+  }
+  gmsh::option::setNumber("General.Terminal", 0);
+  gmsh::option::setNumber("General.Verbosity", 2);  // errors and warnings, kept by the logger
+  gmsh::option::setNumber("General.AbortOnError", 2);  // throw instead of exiting
+  gmsh::logger::start();
+  gmsh::clear();
+}
+
+GmshSession::~GmshSession() {
+  try {
+    gmsh::logger::stop();
+    gmsh::clear();
+  } catch (...) {
+  }
+}
+
+void rethrow_gmsh_error(const std::string& context) {
+  g_failed = true;  // called inside a session, under the mutex
+  std::string message;
+  try {
+    throw;
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    message = e.what();
+  } catch (const std::string& s) {
+    message = s;
+  } catch (const char* s) {
+    message = s;
+  } catch (...) {
+  }
+  try {
+    std::string last;
+    gmsh::logger::getLastError(last);
+    if (!last.empty()) message = last;
+  } catch (...) {
+  }
+  throw InputError(context + ": " + (message.empty() ? "Gmsh failed" : message));
+}
+
+}  // namespace vesselmesh::io

@@ -1,0 +1,116 @@
+#include "io/msh.h"
+
+#include "io/atomic_file.h"
+#include "io/gmsh_session.h"
+#include "mesh/error.h"
+
+#include <fmt/format.h>
+#include <gmsh.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <unordered_map>
+
+namespace vesselmesh::io {
+namespace {
+constexpr int kTriangle3 = 2;  // Gmsh element type of the 3-node triangle
+}
+
+void write_msh(const std::string& path, const TriMesh& mesh,
+               const std::map<int, std::string>& label_names) {
+  // Distinct labels in order; each becomes one discrete surface entity.
+  std::vector<int> labels = mesh.has_labels() ? mesh.labels : std::vector<int>(mesh.triangles.size(), 1);
+  std::vector<int> distinct = labels;
+  std::sort(distinct.begin(), distinct.end());
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  const bool positive = distinct.empty() || distinct.front() > 0;
+
+  GmshSession session;
+  call_gmsh(path, [&] {
+    gmsh::model::add("vesselmesh");
+    std::vector<std::size_t> node_tags(mesh.points.size());
+    std::vector<double> coords;
+    coords.reserve(mesh.points.size() * 3);
+    for (size_t i = 0; i < mesh.points.size(); ++i) {
+      node_tags[i] = i + 1;
+      coords.insert(coords.end(), {mesh.points[i].x(), mesh.points[i].y(), mesh.points[i].z()});
+    }
+    for (size_t k = 0; k < distinct.size(); ++k) {
+      const int entity = static_cast<int>(k) + 1;
+      gmsh::model::addDiscreteEntity(2, entity);
+      if (k == 0) gmsh::model::mesh::addNodes(2, entity, node_tags, coords);
+      std::vector<std::size_t> element_tags, element_nodes;
+      for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        if (labels[t] != distinct[k]) continue;
+        element_tags.push_back(t + 1);
+        for (int v : mesh.triangles[t]) element_nodes.push_back(static_cast<std::size_t>(v) + 1);
+      }
+      gmsh::model::mesh::addElementsByType(entity, kTriangle3, element_tags, element_nodes);
+      const int physical = positive ? distinct[k] : entity;
+      gmsh::model::addPhysicalGroup(2, {entity}, physical);
+      const auto name = label_names.find(distinct[k]);
+      gmsh::model::setPhysicalName(
+          2, physical,
+          name != label_names.end() ? name->second
+                                    : (mesh.has_labels() ? fmt::format("label_{}", distinct[k]) : "surface"));
+    }
+    gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+    gmsh::option::setNumber("Mesh.Binary", 0);
+    gmsh::option::setNumber("Mesh.SaveAll", 0);
+    write_atomically(path, [&](const std::string& temporary) { gmsh::write(temporary); });
+  });
+}
+
+TriMesh read_msh_surface(const std::string& path, std::map<int, std::string>* label_names) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(fmt::format("{}: cannot open: no such file", path));
+  GmshSession session;
+  TriMesh mesh;
+  call_gmsh(path, [&] {
+    gmsh::open(path);
+    std::vector<std::size_t> node_tags;
+    std::vector<double> coords, parametric;
+    gmsh::model::mesh::getNodes(node_tags, coords, parametric, -1, -1, true, false);
+    std::unordered_map<std::size_t, int> index_of;  // Gmsh node tag -> our point index
+    gmsh::vectorpair entities;
+    gmsh::model::getEntities(entities, 2);
+    for (const auto& [dim, entity] : entities) {
+      std::vector<int> physicals;
+      gmsh::model::getPhysicalGroupsForEntity(dim, entity, physicals);
+      const int label = physicals.empty() ? entity : physicals.front();
+      if (label_names && !physicals.empty()) {
+        std::string name;
+        gmsh::model::getPhysicalName(2, label, name);
+        if (!name.empty()) (*label_names)[label] = name;
+      }
+      std::vector<std::size_t> element_tags, element_nodes;
+      gmsh::model::mesh::getElementsByType(kTriangle3, element_tags, element_nodes, entity);
+      for (size_t e = 0; e < element_tags.size(); ++e) {
+        Triangle f;
+        for (int c = 0; c < 3; ++c) {
+          const std::size_t tag = element_nodes[3 * e + c];
+          auto [it, inserted] = index_of.try_emplace(tag, mesh.num_points());
+          if (inserted) mesh.points.emplace_back();  // coordinates filled below
+          f[c] = it->second;
+        }
+        mesh.triangles.push_back(f);
+        mesh.labels.push_back(label);
+      }
+    }
+    std::unordered_map<std::size_t, size_t> position;
+    for (size_t i = 0; i < node_tags.size(); ++i) position[node_tags[i]] = i;
+    for (const auto& [tag, index] : index_of) {
+      const auto found = position.find(tag);
+      if (found == position.end())
+        throw InputError(fmt::format("{}: a triangle uses node {}, which the file does not define", path, tag));
+      const size_t i = found->second;
+      mesh.points[index] = Vec3(coords[3 * i], coords[3 * i + 1], coords[3 * i + 2]);
+    }
+  });
+  if (mesh.triangles.empty())
+    throw InputError(fmt::format("{}: the MSH file has no 3-node triangles (a surface is needed)", path));
+  return mesh;
+}
+
+}  // namespace vesselmesh::io

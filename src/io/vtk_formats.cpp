@@ -1,0 +1,194 @@
+#include "io/vtk_formats.h"
+
+#include "io/atomic_file.h"
+#include "io/vtk_internal.h"
+#include "mesh/error.h"
+#include "mesh/merge_points.h"
+
+#include <fmt/format.h>
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkIntArray.h>
+#include <vtkLogger.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkOutputWindow.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <cmath>
+#include <mutex>
+
+namespace vesselmesh::io {
+namespace {
+
+thread_local std::string t_vtk_error;  // the first error VTK reported on this thread
+
+// VTK prints its errors to a window or stderr; the library never prints, so they are kept
+// here and turned into exceptions by the code that called VTK.
+class KeepErrorsWindow : public vtkOutputWindow {
+ public:
+  static KeepErrorsWindow* New();
+  vtkTypeMacro(KeepErrorsWindow, vtkOutputWindow);
+  void DisplayText(const char*) override {}
+  void DisplayErrorText(const char* text) override {
+    if (text && t_vtk_error.empty()) t_vtk_error = text;
+  }
+  void DisplayWarningText(const char*) override {}
+  void DisplayGenericWarningText(const char*) override {}
+  void DisplayDebugText(const char*) override {}
+};
+vtkStandardNewMacro(KeepErrorsWindow);
+
+// One component of whole numbers (labels are sometimes stored as floating point).
+bool holds_labels(const Field& field) {
+  if (field.components != 1) return false;
+  for (double v : field.values)
+    if (!std::isfinite(v) || v != std::round(v) || std::abs(v) > 2e9) return false;
+  return true;
+}
+
+vtkSmartPointer<vtkDataArray> to_vtk_array(const Field& field, int count, const std::string& path) {
+  if (field.components <= 0 || field.values.size() != static_cast<size_t>(count) * field.components)
+    throw InternalError(fmt::format("{}: field '{}' has {} values, expected {} x {}", path, field.name,
+                                    field.values.size(), count, field.components));
+  vtkSmartPointer<vtkDataArray> array;
+  if (field.integer) array = vtkSmartPointer<vtkIntArray>::New();
+  else array = vtkSmartPointer<vtkDoubleArray>::New();
+  array->SetName(field.name.c_str());
+  array->SetNumberOfComponents(field.components);
+  array->SetNumberOfTuples(count);
+  for (int t = 0; t < count; ++t)
+    for (int c = 0; c < field.components; ++c)
+      array->SetComponent(t, c, field.values[static_cast<size_t>(t) * field.components + c]);
+  return array;
+}
+
+}  // namespace
+
+void keep_vtk_errors() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    vtkNew<KeepErrorsWindow> window;
+    vtkOutputWindow::SetInstance(window);
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  });
+  t_vtk_error.clear();
+}
+
+bool vtk_failed() { return !t_vtk_error.empty(); }
+
+// VTK's messages span lines and start with the source location; keep the last line.
+std::string vtk_error_text() {
+  std::string text = t_vtk_error;
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  const size_t cut = text.rfind('\n');
+  if (cut != std::string::npos) text = text.substr(cut + 1);
+  return text.empty() ? std::string("not a valid file") : text;
+}
+
+const char* vtk_format_name(VtkFormat format) {
+  switch (format) {
+    case VtkFormat::vtp: return "VTK XML PolyData (.vtp)";
+    case VtkFormat::vtu: return "VTK XML UnstructuredGrid (.vtu)";
+  }
+  return "VTK";
+}
+
+void append_piece_fields(std::vector<Field>& fields, std::vector<Field>& piece, bool first) {
+  if (first) {
+    fields = std::move(piece);
+    return;
+  }
+  std::vector<Field> kept;
+  for (Field& f : fields)
+    for (Field& g : piece)
+      if (g.name == f.name && g.components == f.components) {
+        f.values.insert(f.values.end(), g.values.begin(), g.values.end());
+        kept.push_back(std::move(f));
+        break;
+      }
+  fields = std::move(kept);
+}
+
+SurfaceData finish_surface(SurfaceData out, std::vector<Field> cell_fields, const std::string& label_array,
+                           const std::string& name) {
+  // Labels.
+  auto chosen = cell_fields.end();
+  if (!label_array.empty()) {
+    chosen = std::find_if(cell_fields.begin(), cell_fields.end(), [&](const Field& f) { return f.name == label_array; });
+    if (chosen == cell_fields.end() || !holds_labels(*chosen))
+      throw InputError(fmt::format("{}: has no integer cell array '{}' to take labels from", name, label_array));
+  } else {
+    for (const char* candidate : {"ModelFaceID", "tag", "CellEntityIds", "gmsh:physical"}) {
+      chosen = std::find_if(cell_fields.begin(), cell_fields.end(),
+                            [&](const Field& f) { return f.name == candidate && holds_labels(f); });
+      if (chosen != cell_fields.end()) break;
+    }
+  }
+  if (chosen != cell_fields.end()) {
+    out.label_array = chosen->name;
+    out.mesh.labels.assign(chosen->values.begin(), chosen->values.end());
+    cell_fields.erase(chosen);
+  }
+  out.cell_data = std::move(cell_fields);
+
+  // Points with identical coordinates become one; their data is the first one's.
+  const int before = out.mesh.num_points();
+  const std::vector<int> remap = mesh::merge_identical_points(out.mesh.points);
+  mesh::remap_triangles(out.mesh.triangles, remap);
+  if (out.mesh.num_points() != before) {
+    for (Field& field : out.point_data) {
+      std::vector<double> merged(static_cast<size_t>(out.mesh.num_points()) * field.components);
+      for (int i = before - 1; i >= 0; --i)  // backwards: the first occurrence writes last
+        for (int c = 0; c < field.components; ++c)
+          merged[static_cast<size_t>(remap[i]) * field.components + c] = field.values[static_cast<size_t>(i) * field.components + c];
+      field.values = std::move(merged);
+    }
+  }
+  return out;
+}
+
+SurfaceData read_vtk_surface(const std::string& path, VtkFormat format, const std::string& label_array) {
+  return parse_vtk_xml_surface(read_file(path), format, path, label_array);
+}
+
+void write_vtp(const std::string& path, const TriMesh& mesh, const std::vector<Field>& point_data,
+               const std::vector<Field>& cell_data) {
+  keep_vtk_errors();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(mesh.num_points());
+  for (int i = 0; i < mesh.num_points(); ++i) points->SetPoint(i, mesh.points[i].x(), mesh.points[i].y(), mesh.points[i].z());
+  vtkNew<vtkCellArray> polys;
+  polys->AllocateExact(mesh.num_triangles(), 3 * mesh.num_triangles());
+  for (const Triangle& f : mesh.triangles) {
+    const vtkIdType ids[3] = {f[0], f[1], f[2]};
+    polys->InsertNextCell(3, ids);
+  }
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(points);
+  poly->SetPolys(polys);
+  for (const Field& field : point_data) poly->GetPointData()->AddArray(to_vtk_array(field, mesh.num_points(), path));
+  if (mesh.has_labels())
+    poly->GetCellData()->AddArray(to_vtk_array(Field::labels("tag", mesh.labels), mesh.num_triangles(), path));
+  for (const Field& field : cell_data) poly->GetCellData()->AddArray(to_vtk_array(field, mesh.num_triangles(), path));
+
+  write_atomically(path, [&](const std::string& temporary) {
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetFileName(temporary.c_str());
+    writer->SetInputData(poly);
+    writer->SetDataModeToAppended();
+    writer->EncodeAppendedDataOff();
+    writer->SetCompressorTypeToZLib();
+    if (writer->Write() != 1 || vtk_failed())
+      throw InputError(fmt::format("{}: cannot write: {}", path, vtk_error_text()));
+  });
+}
+
+}  // namespace vesselmesh::io

@@ -1,0 +1,41 @@
+// Surfaces in VTK's XML formats: read VTP and VTU, write VTP with point and cell data arrays.
+// VTK's XML parser, decoder and writer work behind this small header.
+//
+// Polygons and strips are split into triangles; vertices, lines and volume cells are not part
+// of a surface. Points with identical coordinates are merged, their point data taken from the
+// first. Every count, offset and index of the file is checked: a damaged file is an
+// InputError naming it, never a crash.
+// Labels: the integer cell array named by `label_array`, else the first present of
+// ModelFaceID, tag, CellEntityIds, gmsh:physical, becomes TriMesh::labels.
+#pragma once
+
+#include "mesh/trimesh.h"
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace vesselmesh::io {
+
+enum class VtkFormat { vtp, vtu };
+
+struct SurfaceData {
+  TriMesh mesh;
+  std::vector<Field> point_data;  // one value tuple per mesh point
+  std::vector<Field> cell_data;   // one value tuple per mesh triangle (labels excluded)
+  std::string label_array;        // the cell array the labels came from, or empty
+};
+
+SurfaceData read_vtk_surface(const std::string& path, VtkFormat format,
+                             const std::string& label_array = "");
+
+// The same for a VTP or VTU held in memory (`name` appears in error messages).
+SurfaceData parse_vtk_xml_surface(std::string_view bytes, VtkFormat format, const std::string& name,
+                                  const std::string& label_array = "");
+
+// VTK XML PolyData, binary and compressed, Float64 points, written atomically. The mesh's
+// labels (if any) are written as the Int32 cell array `tag`. Field sizes must match.
+void write_vtp(const std::string& path, const TriMesh& mesh,
+               const std::vector<Field>& point_data = {}, const std::vector<Field>& cell_data = {});
+
+}  // namespace vesselmesh::io

@@ -1,0 +1,128 @@
+#include "mesh/connectivity.h"
+
+#include "mesh/error.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <numeric>
+
+namespace vesselmesh::mesh {
+
+EdgeMap build_edge_map(const TriMesh& mesh) {
+  const int nt = mesh.num_triangles();
+  // Sort half-edges by their undirected key; equal keys become one edge.
+  std::vector<std::pair<uint64_t, int>> halfedges(static_cast<size_t>(nt) * 3);
+  for (int t = 0; t < nt; ++t) {
+    const Triangle& f = mesh.triangles[t];
+    for (int i = 0; i < 3; ++i) {
+      const auto a = static_cast<uint32_t>(std::min(f[i], f[(i + 1) % 3]));
+      const auto b = static_cast<uint32_t>(std::max(f[i], f[(i + 1) % 3]));
+      halfedges[3 * t + i] = {(uint64_t{a} << 32) | b, 3 * t + i};
+    }
+  }
+  std::sort(halfedges.begin(), halfedges.end());
+
+  EdgeMap map;
+  map.triangle_edges.resize(nt);
+  map.edge_triangles.reserve(halfedges.size());
+  map.triangle_offsets.push_back(0);
+  for (size_t i = 0; i < halfedges.size();) {
+    const uint64_t key = halfedges[i].first;
+    const int e = map.num_edges();
+    map.edges.push_back({static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu)});
+    for (; i < halfedges.size() && halfedges[i].first == key; ++i) {
+      const int h = halfedges[i].second;
+      map.triangle_edges[h / 3][h % 3] = e;
+      // A triangle can use an edge twice only if it is degenerate; list it once.
+      if (map.edge_triangles.size() == static_cast<size_t>(map.triangle_offsets.back()) ||
+          map.edge_triangles.back() != h / 3) {
+        map.edge_triangles.push_back(h / 3);
+      }
+    }
+    map.triangle_offsets.push_back(static_cast<int>(map.edge_triangles.size()));
+  }
+  return map;
+}
+
+VertexTriangles build_vertex_triangles(const TriMesh& mesh) {
+  VertexTriangles vt;
+  vt.offsets.assign(mesh.points.size() + 1, 0);
+  for (const Triangle& f : mesh.triangles)
+    for (int v : f) ++vt.offsets[v + 1];
+  std::partial_sum(vt.offsets.begin(), vt.offsets.end(), vt.offsets.begin());
+  vt.triangles.resize(vt.offsets.back());
+  std::vector<int> fill(vt.offsets.begin(), vt.offsets.end() - 1);
+  for (int t = 0; t < mesh.num_triangles(); ++t)
+    for (int v : mesh.triangles[t]) vt.triangles[fill[v]++] = t;
+  return vt;
+}
+
+std::vector<std::vector<int>> boundary_loops(const TriMesh& mesh, const EdgeMap& edges) {
+  // next[a] = b for every boundary half-edge a -> b.
+  std::vector<int> next(mesh.points.size(), -1);
+  for (int e = 0; e < edges.num_edges(); ++e) {
+    if (!edges.is_boundary(e)) continue;
+    const Triangle& f = mesh.triangles[edges.triangles_of(e)[0]];
+    const int ca = corner_of(f, edges.edges[e][0]);
+    const bool forward = f[(ca + 1) % 3] == edges.edges[e][1];
+    const int a = forward ? edges.edges[e][0] : edges.edges[e][1];
+    const int b = forward ? edges.edges[e][1] : edges.edges[e][0];
+    if (next[a] != -1) {
+      const Vec3& p = mesh.points[a];
+      throw InputError(fmt::format(
+          "the boundary is not a simple loop at vertex {} ({:.6g}, {:.6g}, {:.6g}): two boundary "
+          "edges leave it (a non-manifold vertex or inconsistent orientation); clean the mesh first",
+          a, p.x(), p.y(), p.z()));
+    }
+    next[a] = b;
+  }
+  std::vector<std::vector<int>> loops;
+  std::vector<char> visited(mesh.points.size(), 0);
+  for (int start = 0; start < mesh.num_points(); ++start) {
+    if (next[start] == -1 || visited[start]) continue;
+    std::vector<int> loop;
+    for (int v = start; !visited[v]; v = next[v]) {
+      if (next[v] == -1) {
+        const Vec3& p = mesh.points[v];
+        throw InputError(fmt::format(
+            "the boundary ends at vertex {} ({:.6g}, {:.6g}, {:.6g}) without closing a loop "
+            "(inconsistent orientation); clean the mesh first",
+            v, p.x(), p.y(), p.z()));
+      }
+      visited[v] = 1;
+      loop.push_back(v);
+    }
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+std::vector<int> triangle_components(const TriMesh& mesh, const EdgeMap& edges,
+                                     int* num_components) {
+  const int nt = mesh.num_triangles();
+  std::vector<int> component(nt, -1);
+  std::vector<int> stack;
+  int count = 0;
+  for (int seed = 0; seed < nt; ++seed) {
+    if (component[seed] != -1) continue;
+    component[seed] = count;
+    stack.push_back(seed);
+    while (!stack.empty()) {
+      const int t = stack.back();
+      stack.pop_back();
+      for (int e : edges.triangle_edges[t])
+        for (int u : edges.triangles_of(e))
+          if (component[u] == -1) {
+            component[u] = count;
+            stack.push_back(u);
+          }
+    }
+    ++count;
+  }
+  if (num_components) *num_components = count;
+  return component;
+}
+
+}  // namespace vesselmesh::mesh

@@ -1,0 +1,251 @@
+// The command-line contract: exit codes, one-line errors naming the file, JSON keys, atomic
+// outputs. Runs the built program.
+#include "io/stl.h"
+#include "io/surface.h"
+#include "mesh/connectivity.h"
+#include "synth/shapes.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include <sys/wait.h>
+
+namespace vesselmesh {
+namespace {
+
+using Json = nlohmann::json;
+
+struct RunResult {
+  int code = -1;
+  std::string out, err;
+  Json json() const { return Json::parse(out); }
+};
+
+std::string quote(const std::string& s) {
+  std::string q(1, '\'');
+  for (char c : s) {
+    if (c == '\'') q.append("'\\''");
+    else q.push_back(c);
+  }
+  q.push_back('\'');
+  return q;
+}
+
+RunResult run(const std::vector<std::string>& args) {
+  test::TemporaryFolder tmp;
+  std::string command = quote(VESSELMESH_PROGRAM);
+  for (const std::string& a : args) command.append(" ").append(quote(a));
+  command.append(" >").append(quote(tmp.path("out"))).append(" 2>").append(quote(tmp.path("err"))).append(" </dev/null");
+  const int status = std::system(command.c_str());
+  RunResult r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  auto slurp = [](const std::string& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  r.out = slurp(tmp.path("out"));
+  r.err = slurp(tmp.path("err"));
+  return r;
+}
+
+// The last line of stderr: the error message.
+std::string last_line(const std::string& text) {
+  std::string t = text;
+  while (!t.empty() && t.back() == '\n') t.pop_back();
+  const size_t cut = t.rfind('\n');
+  return cut == std::string::npos ? t : t.substr(cut + 1);
+}
+
+TEST(Cli, HelpListsTheCommands) {
+  const RunResult r = run({"--help"});
+  EXPECT_EQ(r.code, 0);
+  for (const char* command : {"info", "synth", "demo"}) EXPECT_NE(r.out.find(command), std::string::npos) << command;
+  const RunResult info = run({"info", "--help"});
+  EXPECT_EQ(info.code, 0);
+  EXPECT_NE(info.out.find("--units"), std::string::npos);
+  EXPECT_NE(info.out.find("--json"), std::string::npos);
+  EXPECT_EQ(run({"synth", "bifurcation", "--help"}).code, 0);
+}
+
+TEST(Cli, UnknownCommandOrOptionExitsWithTwo) {
+  EXPECT_EQ(run({"frobnicate"}).code, 2);
+  EXPECT_EQ(run({"info", "--no-such-option", "x.stl"}).code, 2);
+  EXPECT_EQ(run({}).code, 2);
+}
+
+TEST(Cli, SynthThenInfoGivesTheContractKeys) {
+  test::TemporaryFolder tmp;
+  const RunResult synth = run({"synth", "cylinder", "-o", tmp.path("pipe.stl"), "--radius", "2", "--length", "8", "--json"});
+  ASSERT_EQ(synth.code, 0) << synth.err;
+  EXPECT_GT(synth.json()["triangles"].get<int>(), 100);
+
+  const RunResult info = run({"info", tmp.path("pipe.stl"), "--json"});
+  ASSERT_EQ(info.code, 0) << info.err;
+  const Json j = info.json();
+  for (const char* key : {"points", "triangles", "components", "closed", "area", "units", "open_ends", "defects", "repairs"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["units"], "mm");
+  EXPECT_EQ(j["closed"], false);
+  EXPECT_EQ(j["components"], 1);
+  ASSERT_EQ(j["open_ends"].size(), 2u);
+  for (const Json& end : j["open_ends"]) {
+    for (const char* key : {"center", "normal", "area", "radius", "perimeter", "capped"}) EXPECT_TRUE(end.contains(key)) << key;
+    EXPECT_NEAR(end["radius"].get<double>(), 2.0, 0.02);
+    EXPECT_EQ(end["center"].size(), 3u);
+  }
+  EXPECT_TRUE(j["defects"].is_object());
+  EXPECT_EQ(j["defects"]["non_manifold_edges"], 0);
+  EXPECT_EQ(j["repairs"]["flipped_triangles"], 0);
+}
+
+TEST(Cli, UnitsScaleTheReport) {
+  test::TemporaryFolder tmp;
+  ASSERT_EQ(run({"synth", "sphere", "--radius", "1", "--resolution", "0.2", "-o", tmp.path("s.vtp")}).code, 0);
+  const Json j = run({"info", tmp.path("s.vtp"), "--units", "cm", "--json"}).json();
+  EXPECT_EQ(j["input_units"], "cm");
+  EXPECT_NEAR(j["bounding_box"]["size"][0].get<double>(), 20.0, 0.1);
+  const RunResult bad = run({"info", tmp.path("s.vtp"), "--units", "furlong"});
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(last_line(bad.err).find("unknown length unit 'furlong'"), std::string::npos) << bad.err;
+}
+
+TEST(Cli, RepairedOutputIsWrittenAndABadOutputNameFailsFirst) {
+  test::TemporaryFolder tmp;
+  TriMesh m = synth::sphere({.radius = 2, .resolution = 0.5});
+  for (Triangle& f : m.triangles) std::swap(f[1], f[2]);
+  io::write_stl(tmp.path("inward.stl"), m);
+  const RunResult r = run({"info", tmp.path("inward.stl"), "-o", tmp.path("fixed.vtp"), "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.json()["defects"]["inward_components"], 1);
+  EXPECT_EQ(r.json()["repairs"]["flipped_triangles"], m.num_triangles());
+  const RunResult again = run({"info", tmp.path("fixed.vtp"), "--json"});
+  EXPECT_EQ(again.json()["defects"]["inward_components"], 0);
+
+  const RunResult bad = run({"info", tmp.path("inward.stl"), "-o", tmp.path("fixed.docx")});
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_EQ(tmp.files(), (std::vector<std::string>{"fixed.vtp", "inward.stl"}));
+}
+
+struct BadInput {
+  const char* name;
+  std::string bytes;
+  const char* says;
+};
+
+class CliBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(CliBadInput, OneLineErrorNamingTheFileAndExitTwo) {
+  const BadInput& c = GetParam();
+  test::TemporaryFolder tmp;
+  const std::string path = tmp.path(c.name);
+  test::write_bytes(path, c.bytes);
+  const RunResult r = run({"info", path, "-o", tmp.path("out.stl")});
+  EXPECT_EQ(r.code, 2) << r.err;
+  const std::string line = last_line(r.err);
+  EXPECT_NE(line.find(path), std::string::npos) << line;
+  EXPECT_NE(line.find(c.says), std::string::npos) << line;
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(tmp.files(), std::vector<std::string>{c.name}) << "nothing half-written";
+}
+
+std::string binary_stl(const std::vector<std::array<float, 9>>& facets, uint32_t declared) {
+  std::string bytes(80, ' ');
+  bytes.append(reinterpret_cast<const char*>(&declared), 4);
+  for (const auto& f : facets) {
+    bytes.append(12, '\0');
+    bytes.append(reinterpret_cast<const char*>(f.data()), 36);
+    bytes.append(2, '\0');
+  }
+  return bytes;
+}
+
+// A closed tetrahedron with a fin on one edge: three triangles share it.
+std::string non_manifold_stl() {
+  const float a[3] = {1, 1, 1}, b[3] = {1, -1, -1}, c[3] = {-1, 1, -1}, d[3] = {-1, -1, 1}, e[3] = {5, 5, 5};
+  auto facet = [](const float* p, const float* q, const float* r) {
+    return std::array<float, 9>{p[0], p[1], p[2], q[0], q[1], q[2], r[0], r[1], r[2]};
+  };
+  return binary_stl({facet(a, b, c), facet(a, d, b), facet(a, c, d), facet(b, d, c), facet(a, b, e)}, 5);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Files, CliBadInput,
+    ::testing::Values(
+        BadInput{"empty.stl", "", "empty"},
+        BadInput{"truncated.stl", binary_stl({{0, 0, 0, 1, 0, 0, 0, 1, 0}}, 3), "truncated"},
+        BadInput{"count.stl", binary_stl({{0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 0, 0, 1, 0, 0, 0, 1, 0}}, 1), "disagrees"},
+        BadInput{"nan.stl", binary_stl({{0, 0, 0, NAN, 0, 0, 0, 1, 0}}, 1), "non-finite"},
+        BadInput{"inf.stl", "solid s\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex inf 0 0\n", "non-finite"},
+        BadInput{"picture.stl", "\x89PNG\r\n\x1a\n" + std::string(300, 'x'), "STL"},
+        BadInput{"text.vtp", "hello, this is no mesh", "not a VTK XML file"},
+        BadInput{"broken.vtp", "<?xml version=\"1.0\"?><VTKFile type=\"PolyData\"><PolyData><Piece", "cannot read"},
+        BadInput{"nonmanifold.stl", non_manifold_stl(), "non-manifold edge"},
+        BadInput{"flat.stl", binary_stl({{0, 0, 0, 1, 0, 0, 2, 0, 0}, {0, 0, 0, 0, 0, 0, 1, 1, 1}}, 2), "no triangle"},
+        BadInput{"garbage.ply", "ply\nformat ascii 1.0\nelement vertex 9\n", "PLY"},
+        BadInput{"garbage.obj", "v 1 2\n", "OBJ"}),
+    [](const auto& param_info) { return test::test_name(param_info.param.name); });
+
+TEST(Cli, MissingFileAndUnknownFormat) {
+  const RunResult missing = run({"info", "/nonexistent/vessel.stl"});
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(last_line(missing.err).find("/nonexistent/vessel.stl"), std::string::npos);
+  const RunResult format = run({"info", "vessel.step"});
+  EXPECT_EQ(format.code, 2);
+  EXPECT_NE(last_line(format.err).find("unknown surface format"), std::string::npos);
+}
+
+TEST(Cli, DemoWritesItsOutputs) {
+  test::TemporaryFolder tmp;
+  const RunResult r = run({"demo", "-o", tmp.path("demo"), "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = r.json();
+  for (const Json& file : j["files"]) EXPECT_TRUE(std::filesystem::exists(file.get<std::string>())) << file;
+  EXPECT_EQ(j["surface"]["open_ends"].size(), 3u);
+  EXPECT_TRUE(std::filesystem::exists(tmp.path("demo/surface.vtp")));
+}
+
+struct VesselInfo {
+  const char* file;
+  const char* units;
+  int ends;
+  int capped;
+  bool inward;
+};
+
+class CliRealVessels : public ::testing::TestWithParam<VesselInfo> {};
+
+TEST_P(CliRealVessels, InfoFindsTheEndsAndFixesInwardFiles) {
+  const VesselInfo c = GetParam();
+  VESSELMESH_REQUIRE_SHARED(path, std::string("vessels/") + c.file);
+  const RunResult r = run({"info", path, "--units", c.units, "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = r.json();
+  EXPECT_EQ(j["open_ends"].size(), static_cast<size_t>(c.ends));
+  int capped = 0;
+  for (const Json& end : j["open_ends"]) capped += end["capped"].get<bool>();
+  EXPECT_EQ(capped, c.capped);
+  EXPECT_EQ(j["defects"]["inward_components"], c.inward ? 1 : 0);
+  EXPECT_EQ(j["repairs"]["flipped_triangles"].get<int>(), c.inward ? j["triangles"].get<int>() : 0);
+  EXPECT_GT(j["volume"].get<double>(), 0.0);
+  EXPECT_EQ(j["components"], 1);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    SharedData, CliRealVessels,
+    ::testing::Values(VesselInfo{"vmtk_aorta_iliac_bifurcation_open_mm.stl", "mm", 3, 0, true},
+                      VesselInfo{"vmtk_aorta_iliac_bifurcation_closed_mm.stl", "mm", 0, 0, true},
+                      VesselInfo{"gmsh_aortic_arch_open_cm.stl", "cm", 5, 0, true},
+                      VesselInfo{"gmsh_carotid_bifurcation_open_m.stl", "m", 3, 0, true},
+                      VesselInfo{"simvascular_demo_aorta_iliacs_capped_cm.stl", "cm", 3, 3, false},
+                      VesselInfo{"simvascular_demo_aorta_iliacs_capped_cm.vtp", "cm", 3, 3, false}),
+    [](const auto& param_info) { return test::test_name(param_info.param.file); });
+
+}  // namespace
+}  // namespace vesselmesh

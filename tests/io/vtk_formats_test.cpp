@@ -1,0 +1,134 @@
+#include "io/vtk_formats.h"
+
+#include "mesh/error.h"
+#include "synth/shapes.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include "io/atomic_file.h"
+
+#include <cstring>
+#include <fstream>
+#include <map>
+
+namespace vesselmesh::io {
+namespace {
+
+TEST(VtkFormats, VtpRoundTripKeepsPointsTrianglesLabelsAndFields) {
+  test::TemporaryFolder tmp;
+  TriMesh m = synth::cylinder({.radius = 1.0, .length = 2.0, .resolution = 0.5, .capped = true});
+  std::vector<double> height;
+  for (const Vec3& p : m.points) height.push_back(p.z());
+  std::vector<Vec3> normal(m.points.size(), Vec3(0, 0, 1));
+  std::vector<double> area(m.triangles.size(), 0.25);
+  write_vtp(tmp.path("c.vtp"), m, {Field::scalar("height", height), Field::vector("normal", normal)},
+            {Field::scalar("area", area)});
+  EXPECT_EQ(tmp.files(), std::vector<std::string>{"c.vtp"});
+
+  const SurfaceData back = read_vtk_surface(tmp.path("c.vtp"), VtkFormat::vtp);
+  EXPECT_EQ(back.mesh.points, m.points);  // Float64, bit for bit
+  EXPECT_EQ(back.mesh.triangles, m.triangles);
+  EXPECT_EQ(back.mesh.labels, m.labels);
+  EXPECT_EQ(back.label_array, "tag");
+  ASSERT_EQ(back.point_data.size(), 2u);
+  EXPECT_EQ(back.point_data[0].name, "height");
+  EXPECT_EQ(back.point_data[0].values, height);
+  EXPECT_EQ(back.point_data[1].components, 3);
+  ASSERT_EQ(back.cell_data.size(), 1u);
+  EXPECT_EQ(back.cell_data[0].values, area);
+}
+
+TEST(VtkFormats, VtuTrianglesAreASurface) {
+  const std::string vtu =
+      R"(<?xml version="1.0"?><VTKFile type="UnstructuredGrid" version="0.1"><UnstructuredGrid><Piece NumberOfPoints="3" NumberOfCells="1">)"
+      R"(<Points><DataArray type="Float64" NumberOfComponents="3" format="ascii">0 0 0 1 0 0 0 1 0</DataArray></Points>)"
+      R"(<Cells><DataArray type="Int64" Name="connectivity" format="ascii">0 1 2</DataArray>)"
+      R"(<DataArray type="Int64" Name="offsets" format="ascii">3</DataArray>)"
+      R"(<DataArray type="UInt8" Name="types" format="ascii">5</DataArray></Cells>)"
+      R"(<CellData><DataArray type="Int32" Name="CellEntityIds" format="ascii">7</DataArray></CellData>)"
+      R"(</Piece></UnstructuredGrid></VTKFile>)";
+  const SurfaceData s = parse_vtk_xml_surface(vtu, VtkFormat::vtu, "t.vtu");
+  EXPECT_EQ(s.mesh.num_triangles(), 1);
+  EXPECT_EQ(s.mesh.labels, std::vector<int>{7});
+  EXPECT_EQ(s.label_array, "CellEntityIds");
+}
+
+TEST(VtkFormats, BadXmlGivesAnErrorNamingTheFile) {
+  for (const std::string& bytes : {std::string(""), std::string("not xml at all"),
+                                  std::string("<VTKFile type=\"PolyData\"><PolyData><Piece NumberOfPoints=\"3\""),
+                                  std::string("<?xml version=\"1.0\"?><VTKFile type=\"PolyData\" version=\"0.1\">"
+                                              "<PolyData><Piece NumberOfPoints=\"0\" NumberOfPolys=\"0\"></Piece>"
+                                              "</PolyData></VTKFile>")}) {
+    try {
+      parse_vtk_xml_surface(bytes, VtkFormat::vtp, "bad.vtp");
+      FAIL() << "accepted: " << bytes;
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("bad.vtp: ", 0), 0u) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "one line: " << e.what();
+    }
+  }
+}
+
+TEST(VtkFormats, InlineBase64AndAppendedBase64AreRead) {
+  VESSELMESH_REQUIRE_SHARED(centerlines, "vessels/vmtk_aorta_iliac_bifurcation_centerlines_mm.vtp");
+  // Lines only: read, then refused for having no surface.
+  try {
+    read_vtk_surface(centerlines, VtkFormat::vtp);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no triangles"), std::string::npos) << e.what();
+  }
+}
+
+TEST(VtkFormats, DamagedCompressionHeaderIsRefusedBeforeDecoding) {
+  test::TemporaryFolder tmp;
+  write_vtp(tmp.path("t.vtp"), test::tetrahedron());
+  std::string bytes = read_file(tmp.path("t.vtp"));
+  // The first array's block count (raw appended, UInt32) claims four billion blocks.
+  const size_t data = bytes.find('_', bytes.find("<AppendedData")) + 1;
+  std::memset(bytes.data() + data, 0xff, 4);
+  try {
+    parse_vtk_xml_surface(bytes, VtkFormat::vtp, "damaged.vtp");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("compression header"), std::string::npos) << e.what();
+  }
+}
+
+TEST(VtkFormats, DuplicateArrayNamesAreAnError) {
+  const std::string vtp =
+      R"(<VTKFile type="PolyData" version="0.1"><PolyData><Piece NumberOfPoints="3" NumberOfPolys="1">)"
+      R"(<Points><DataArray type="Float32" NumberOfComponents="3" format="ascii">0 0 0 1 0 0 0 1 0</DataArray></Points>)"
+      R"(<Polys><DataArray type="Int32" Name="connectivity" format="ascii">0 1 2</DataArray>)"
+      R"(<DataArray type="Int32" Name="offsets" format="ascii">3</DataArray></Polys>)"
+      R"(<CellData><DataArray type="Int32" Name="a" format="ascii">1</DataArray>)"
+      R"(<DataArray type="Int32" Name="a" format="ascii">1</DataArray></CellData></Piece></PolyData></VTKFile>)";
+  EXPECT_THROW(parse_vtk_xml_surface(vtp, VtkFormat::vtp, "dup.vtp"), InputError);
+  std::string short_array = vtp;
+  short_array.replace(short_array.find("0 0 0 1 0 0 0 1 0"), 17, "0 0 0 1 0 0 0 1");
+  EXPECT_THROW(parse_vtk_xml_surface(short_array, VtkFormat::vtp, "short.vtp"), InputError);
+  std::string bad_index = vtp;
+  bad_index.replace(bad_index.find(">0 1 2<"), 7, ">0 1 7<");
+  EXPECT_THROW(parse_vtk_xml_surface(bad_index, VtkFormat::vtp, "index.vtp"), InputError);
+}
+
+TEST(VtkFormats, NamedLabelArrayMustExist) {
+  test::TemporaryFolder tmp;
+  write_vtp(tmp.path("t.vtp"), test::tetrahedron());
+  EXPECT_THROW(read_vtk_surface(tmp.path("t.vtp"), VtkFormat::vtp, "ModelFaceID"), InputError);
+}
+
+TEST(VtkFormats, SimVascularModelFaceIdsAreLabels) {
+  VESSELMESH_REQUIRE_SHARED(path, "vessels/simvascular_demo_aorta_iliacs_capped_cm.vtp");
+  const SurfaceData s = read_vtk_surface(path, VtkFormat::vtp);
+  EXPECT_EQ(s.label_array, "ModelFaceID");
+  std::map<int, int> count;
+  for (int label : s.mesh.labels) ++count[label];
+  // The counts its README gives for faces 1..5.
+  EXPECT_EQ(count, (std::map<int, int>{{1, 9267}, {2, 5222}, {3, 78}, {4, 35}, {5, 32}}));
+  EXPECT_EQ(s.mesh.num_points(), 7319);
+}
+
+}  // namespace
+}  // namespace vesselmesh::io

@@ -1,0 +1,59 @@
+#include "test_support.h"
+
+#include <atomic>
+#include <cctype>
+#include <fstream>
+#include <unistd.h>
+
+namespace vesselmesh::test {
+
+namespace fs = std::filesystem;
+
+TemporaryFolder::TemporaryFolder() {
+  static std::atomic<int> counter{0};
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "vesselmesh";
+  folder_ = fs::temp_directory_path() / ("vesselmesh-test-" + std::to_string(::getpid()) + "-" +
+                                         std::to_string(counter++) + "-" + name);
+  fs::remove_all(folder_);
+  fs::create_directories(folder_);
+}
+
+TemporaryFolder::~TemporaryFolder() {
+  std::error_code ec;
+  fs::remove_all(folder_, ec);
+}
+
+std::vector<std::string> TemporaryFolder::files() const {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(folder_)) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::string shared_data(const std::string& relative) {
+  const fs::path path = fs::path(VESSELMESH_SHARED_DATA) / relative;
+  std::error_code ec;
+  return fs::exists(path, ec) ? path.string() : std::string();
+}
+
+std::string test_name(const std::string& text) {
+  std::string name;
+  for (char c : text) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return name;
+}
+
+void write_bytes(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+TriMesh tetrahedron(const Vec3& offset, double size) {
+  TriMesh m;
+  m.points = {offset + size * Vec3(1, 1, 1), offset + size * Vec3(1, -1, -1), offset + size * Vec3(-1, 1, -1),
+              offset + size * Vec3(-1, -1, 1)};
+  m.triangles = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  return m;
+}
+
+}  // namespace vesselmesh::test

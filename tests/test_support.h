@@ -1,0 +1,46 @@
+// Helpers shared by the test suites: temporary folders, the shared real-vessel data (tests
+// skip with a message where ../shared is absent), and small meshes built by hand.
+#pragma once
+
+#include "mesh/trimesh.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+namespace vesselmesh::test {
+
+// A fresh empty folder under the system's temporary folder, removed at the end of the test.
+class TemporaryFolder {
+ public:
+  TemporaryFolder();
+  ~TemporaryFolder();
+  std::string path(const std::string& name) const { return (folder_ / name).string(); }
+  const std::filesystem::path& folder() const { return folder_; }
+  // Names of the files in it (to check that nothing half-written is left behind).
+  std::vector<std::string> files() const;
+
+ private:
+  std::filesystem::path folder_;
+};
+
+// Path of a file of ../shared/data, or "" when the shared folder is absent.
+std::string shared_data(const std::string& relative);
+
+// Skips the current test with a message when the shared data is absent.
+#define VESSELMESH_REQUIRE_SHARED(path_variable, relative)                                  \
+  const std::string path_variable = ::vesselmesh::test::shared_data(relative);             \
+  if (path_variable.empty()) GTEST_SKIP() << "shared data absent (" << (relative)          \
+                                          << "): this test runs beside ../shared/data only"
+
+// A test-name-safe version of a file name: letters and digits, the rest '_'.
+std::string test_name(const std::string& text);
+
+// Writes bytes to a file.
+void write_bytes(const std::string& path, const std::string& bytes);
+
+// A regular tetrahedron, outward, 4 points and 4 triangles.
+TriMesh tetrahedron(const Vec3& offset = Vec3::Zero(), double size = 1.0);
+
+}  // namespace vesselmesh::test
