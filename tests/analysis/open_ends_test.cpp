@@ -84,6 +84,7 @@ struct VesselCase {
   const char* units;
   int open;
   int capped;
+  friend void PrintTo(const VesselCase& c, std::ostream* os) { *os << c.file; }
 };
 
 class RealVessels : public ::testing::TestWithParam<VesselCase> {};

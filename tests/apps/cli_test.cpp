@@ -137,6 +137,7 @@ struct BadInput {
   const char* name;
   std::string bytes;
   const char* says;
+  friend void PrintTo(const BadInput& c, std::ostream* os) { *os << c.name; }
 };
 
 class CliBadInput : public ::testing::TestWithParam<BadInput> {};
@@ -217,6 +218,7 @@ struct VesselInfo {
   int ends;
   int capped;
   bool inward;
+  friend void PrintTo(const VesselInfo& c, std::ostream* os) { *os << c.file; }
 };
 
 class CliRealVessels : public ::testing::TestWithParam<VesselInfo> {};
