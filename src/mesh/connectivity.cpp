@@ -11,38 +11,47 @@
 namespace vesselmesh::mesh {
 
 EdgeMap build_edge_map(const TriMesh& mesh) {
+  // Each edge (a, b), a < b, is found from its smaller end: for every point a in order, the
+  // half-edges of its triangles that lead to a larger point, sorted by (b, half-edge). Small
+  // per-point sorts instead of one global sort; the result is lexicographic all the same.
   const int nt = mesh.num_triangles();
-  // Sort half-edges by their undirected key; equal keys become one edge.
-  std::vector<std::pair<uint64_t, int>> halfedges(static_cast<size_t>(nt) * 3);
-  for (int t = 0; t < nt; ++t) {
-    const Triangle& f = mesh.triangles[t];
-    for (int i = 0; i < 3; ++i) {
-      const auto a = static_cast<uint32_t>(std::min(f[i], f[(i + 1) % 3]));
-      const auto b = static_cast<uint32_t>(std::max(f[i], f[(i + 1) % 3]));
-      halfedges[3 * t + i] = {(uint64_t{a} << 32) | b, 3 * t + i};
-    }
-  }
-  std::sort(halfedges.begin(), halfedges.end());
-
+  const VertexTriangles around = build_vertex_triangles(mesh);
   EdgeMap map;
   map.triangle_edges.resize(nt);
-  map.edge_triangles.reserve(halfedges.size());
+  map.edge_triangles.reserve(static_cast<size_t>(nt) * 3);
+  map.edges.reserve(static_cast<size_t>(nt) * 3 / 2 + 16);
+  map.triangle_offsets.reserve(static_cast<size_t>(nt) * 3 / 2 + 17);
   map.triangle_offsets.push_back(0);
-  for (size_t i = 0; i < halfedges.size();) {
-    const uint64_t key = halfedges[i].first;
-    const int e = map.num_edges();
-    map.edges.push_back({static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu)});
-    for (; i < halfedges.size() && halfedges[i].first == key; ++i) {
-      const int h = halfedges[i].second;
-      map.triangle_edges[h / 3][h % 3] = e;
-      // A triangle can use an edge twice only if it is degenerate; list it once.
-      if (map.edge_triangles.size() == static_cast<size_t>(map.triangle_offsets.back()) ||
-          map.edge_triangles.back() != h / 3) {
-        map.edge_triangles.push_back(h / 3);
+  std::vector<std::pair<int, int>> leaving;  // (other end b, half-edge 3t + i)
+  for (int a = 0; a < mesh.num_points(); ++a) {
+    leaving.clear();
+    for (int t : around.of(a)) {
+      const Triangle& f = mesh.triangles[t];
+      for (int i = 0; i < 3; ++i) {
+        const int u = f[i], v = f[(i + 1) % 3];
+        if (std::min(u, v) == a && std::max(u, v) != a) leaving.emplace_back(std::max(u, v), 3 * t + i);
       }
     }
-    map.triangle_offsets.push_back(static_cast<int>(map.edge_triangles.size()));
+    std::sort(leaving.begin(), leaving.end());
+    for (size_t k = 0; k < leaving.size();) {
+      const int b = leaving[k].first;
+      const int e = map.num_edges();
+      map.edges.push_back({a, b});
+      for (; k < leaving.size() && leaving[k].first == b; ++k) {
+        const int h = leaving[k].second;
+        map.triangle_edges[h / 3][h % 3] = e;
+        // A triangle can use an edge twice only if it is degenerate; list it once.
+        if (map.edge_triangles.size() == static_cast<size_t>(map.triangle_offsets.back()) ||
+            map.edge_triangles.back() != h / 3)
+          map.edge_triangles.push_back(h / 3);
+      }
+      map.triangle_offsets.push_back(static_cast<int>(map.edge_triangles.size()));
+    }
   }
+  // Half-edges from a point to itself (a triangle with a repeated corner) form no edge.
+  for (int t = 0; t < nt; ++t)
+    for (int i = 0; i < 3; ++i)
+      if (mesh.triangles[t][i] == mesh.triangles[t][(i + 1) % 3]) map.triangle_edges[t][i] = -1;
   return map;
 }
 
@@ -113,7 +122,7 @@ std::vector<int> triangle_components(const TriMesh& mesh, const EdgeMap& edges,
       const int t = stack.back();
       stack.pop_back();
       for (int e : edges.triangle_edges[t])
-        for (int u : edges.triangles_of(e))
+        for (int u : e < 0 ? std::span<const int>() : edges.triangles_of(e))
           if (component[u] == -1) {
             component[u] = count;
             stack.push_back(u);

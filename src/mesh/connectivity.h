@@ -16,7 +16,8 @@ struct EdgeMap {
   // Triangles using edge e: edge_triangles[triangle_offsets[e] .. triangle_offsets[e+1]), ascending.
   std::vector<int> triangle_offsets;
   std::vector<int> edge_triangles;
-  // triangle_edges[t][i] is the edge between corners i and (i+1)%3 of triangle t.
+  // triangle_edges[t][i] is the edge between corners i and (i+1)%3 of triangle t, or -1 where
+  // the two corners are the same point (a degenerate triangle; mesh::clean removes those).
   std::vector<std::array<int, 3>> triangle_edges;
 
   int num_edges() const { return static_cast<int>(edges.size()); }
@@ -27,6 +28,7 @@ struct EdgeMap {
   bool is_boundary(int e) const { return valence(e) == 1; }
 };
 
+// Linear time: edges are gathered per point from vertex-triangle incidence.
 EdgeMap build_edge_map(const TriMesh& mesh);
 
 struct VertexTriangles {

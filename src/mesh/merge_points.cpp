@@ -97,39 +97,42 @@ std::vector<int> merge_identical_points(std::vector<Vec3>& points) {
 std::vector<int> merge_close_points(std::vector<Vec3>& points, std::span<const double> tolerance) {
   const size_t n = points.size();
   VM_CHECK(tolerance.size() == n, "one tolerance per point");
-  const double cell = *std::max_element(tolerance.begin(), tolerance.end());
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
-  if (n == 0 || !(cell > 0.0)) return compact(points, parent);
+  const double largest = n == 0 ? 0.0 : *std::max_element(tolerance.begin(), tolerance.end());
+  if (!(largest > 0.0)) return compact(points, parent);
 
-  // Bucket points in a grid of cell size max(tol): close pairs lie in neighbouring cells.
-  auto cell_of = [&](const Vec3& p) {  // clamped: far points share the edge cells, still correct
-    auto index = [&](double x) { return static_cast<int64_t>(std::clamp(std::floor(x / cell), -4e18, 4e18)); };
-    return std::array<int64_t, 3>{index(p.x()), index(p.y()), index(p.z())};
+  // Bucket points in a grid of cells much larger than any tolerance: a point looks only in
+  // the cells its own tolerance box touches, one cell in most cases.
+  const double cell = 16.0 * largest;
+  auto index = [&](double x) {  // clamped: far points share the outermost cells, still correct
+    return static_cast<int64_t>(std::clamp(std::floor(x / cell), -4e18, 4e18));
   };
-  auto key_of = [](const std::array<int64_t, 3>& c) {
-    return mix(static_cast<uint64_t>(c[0]) ^
-               mix(static_cast<uint64_t>(c[1]) ^ mix(static_cast<uint64_t>(c[2]))));
+  auto key_of = [](int64_t i, int64_t j, int64_t k) {
+    return mix(static_cast<uint64_t>(i) ^ mix(static_cast<uint64_t>(j) ^ mix(static_cast<uint64_t>(k))));
   };
   std::vector<std::pair<uint64_t, int>> sorted(n);
-  for (size_t i = 0; i < n; ++i) sorted[i] = {key_of(cell_of(points[i])), static_cast<int>(i)};
+  for (size_t i = 0; i < n; ++i)
+    sorted[i] = {key_of(index(points[i].x()), index(points[i].y()), index(points[i].z())), static_cast<int>(i)};
   std::sort(sorted.begin(), sorted.end());
 
   for (size_t i = 0; i < n; ++i) {
-    const auto c = cell_of(points[i]);
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz) {
-          const uint64_t key = key_of({c[0] + dx, c[1] + dy, c[2] + dz});
+    const Vec3& p = points[i];
+    const double t = tolerance[i];
+    if (!(t > 0.0)) continue;
+    const int64_t x0 = index(p.x() - t), x1 = index(p.x() + t), y0 = index(p.y() - t), y1 = index(p.y() + t),
+                  z0 = index(p.z() - t), z1 = index(p.z() + t);
+    for (int64_t cx = x0; cx <= x1; ++cx)
+      for (int64_t cy = y0; cy <= y1; ++cy)
+        for (int64_t cz = z0; cz <= z1; ++cz) {
+          const uint64_t key = key_of(cx, cy, cz);
           auto it = std::lower_bound(sorted.begin(), sorted.end(), std::pair<uint64_t, int>{key, 0});
           for (; it != sorted.end() && it->first == key; ++it) {
             const int j = it->second;
-            if (j <= static_cast<int>(i)) continue;
-            if ((points[i] - points[j]).norm() <= std::min(tolerance[i], tolerance[j])) {
-              const int ri = find_root(parent, static_cast<int>(i));
-              const int rj = find_root(parent, j);
-              if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);
-            }
+            if (j <= static_cast<int>(i) || (p - points[j]).norm() > std::min(t, tolerance[j])) continue;
+            const int ri = find_root(parent, static_cast<int>(i));
+            const int rj = find_root(parent, j);
+            if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);
           }
         }
   }
