@@ -4,6 +4,7 @@
 
 #include "cli_support.h"
 
+#include "analysis/curvature.h"
 #include "analysis/open_ends.h"
 #include "io/surface.h"
 #include "mesh/clean.h"
@@ -23,6 +24,7 @@ struct Command {
 };
 
 Command add_info_command(CLI::App& parent);
+Command add_curvature_command(CLI::App& parent);
 Command add_synth_command(CLI::App& parent);
 Command add_demo_command(CLI::App& parent);
 
@@ -47,5 +49,9 @@ Json describe(const CheckedSurface& surface);
 std::string describe_as_text(const CheckedSurface& surface);
 // The repaired surface with the input's point and cell data carried along.
 void write_repaired(const std::string& path, const CheckedSurface& surface);
+
+// The point-data arrays of the curvature contract: k1, k2, mean_curvature, gauss_curvature,
+// dir1, dir2, normal.
+std::vector<Field> curvature_fields(const analysis::CurvatureField& curvature);
 
 }  // namespace vesselmesh::cli

@@ -83,10 +83,16 @@ Command add_demo_command(CLI::App& parent) {
             write_text(folder / "surface_info.txt", describe_as_text(surface));
             write_repaired((folder / "surface.vtp").string(), surface);
 
+            // Stage 2: curvature (drives the curvature-adapted meshes).
+            reporter.info("stage 2: curvature");
+            const analysis::CurvatureField curvature = analysis::curvature(surface.file.mesh, {}, reporter);
+            io::write_vtp((folder / "curvature.vtp").string(), surface.file.mesh, curvature_fields(curvature));
+
             const std::vector<std::pair<std::string, std::string>> outputs = {
                 {"surface_info.txt", "what the mesh doctor found, the open ends, statistics"},
                 {"surface_info.json", "the same, machine-readable (vesselmesh info --json)"},
                 {"surface.vtp", "the repaired surface in mm (open in ParaView)"},
+                {"curvature.vtp", "k1, k2, mean and Gaussian curvature (1/mm), principal directions, normals"},
             };
             if (o->common.json) {
               Json summary = {{"input", input.string()}, {"output", o->output}, {"surface", info}};

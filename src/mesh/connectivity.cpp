@@ -55,7 +55,9 @@ EdgeMap build_edge_map(const TriMesh& mesh) {
   return map;
 }
 
-VertexTriangles build_vertex_triangles(const TriMesh& mesh) {
+namespace {
+
+VertexTriangles incidence(const TriMesh& mesh, bool corners) {
   VertexTriangles vt;
   vt.offsets.assign(mesh.points.size() + 1, 0);
   for (const Triangle& f : mesh.triangles)
@@ -64,9 +66,15 @@ VertexTriangles build_vertex_triangles(const TriMesh& mesh) {
   vt.triangles.resize(vt.offsets.back());
   std::vector<int> fill(vt.offsets.begin(), vt.offsets.end() - 1);
   for (int t = 0; t < mesh.num_triangles(); ++t)
-    for (int v : mesh.triangles[t]) vt.triangles[fill[v]++] = t;
+    for (int c = 0; c < 3; ++c) vt.triangles[fill[mesh.triangles[t][c]]++] = corners ? 3 * t + c : t;
   return vt;
 }
+
+}  // namespace
+
+VertexTriangles build_vertex_triangles(const TriMesh& mesh) { return incidence(mesh, false); }
+
+VertexTriangles build_vertex_corners(const TriMesh& mesh) { return incidence(mesh, true); }
 
 std::vector<std::vector<int>> boundary_loops(const TriMesh& mesh, const EdgeMap& edges) {
   // next[a] = b for every boundary half-edge a -> b.

@@ -41,6 +41,10 @@ struct VertexTriangles {
 
 VertexTriangles build_vertex_triangles(const TriMesh& mesh);
 
+// The same listing corners instead of triangles: 3 t + c where mesh.triangles[t][c] == v, so
+// a point's loop over its triangles also knows its place in each.
+VertexTriangles build_vertex_corners(const TriMesh& mesh);
+
 // Boundary loops of a manifold, consistently oriented surface: each loop lists its vertices
 // in the direction of the triangles' own edges (a -> b where a triangle has the edge a -> b).
 // Loops are ordered by their smallest vertex id and start at it. Throws InputError naming

@@ -202,6 +202,29 @@ TEST(Cli, MissingFileAndUnknownFormat) {
   EXPECT_NE(last_line(format.err).find("unknown surface format"), std::string::npos);
 }
 
+TEST(Cli, CurvatureWritesTheContractArrays) {
+  test::TemporaryFolder tmp;
+  ASSERT_EQ(run({"synth", "cylinder", "--radius", "2", "--length", "10", "--resolution", "0.2", "-o", tmp.path("p.stl")}).code, 0);
+  const RunResult r = run({"curvature", tmp.path("p.stl"), "-o", tmp.path("c.vtp"), "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = r.json();
+  EXPECT_EQ(j["curvature_units"], "1/mm");
+  EXPECT_NEAR(j["k2"]["median"].get<double>(), 0.5, 0.005);  // 1/R
+  EXPECT_NEAR(j["k1"]["median"].get<double>(), 0.0, 0.005);
+  EXPECT_NEAR(j["mean_curvature"]["median"].get<double>(), 0.25, 0.003);
+  const io::SurfaceFile out = io::read_surface(tmp.path("c.vtp"));
+  std::vector<std::string> names;
+  for (const Field& f : out.point_data) names.push_back(f.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"k1", "k2", "mean_curvature", "gauss_curvature", "dir1", "dir2", "normal"}));
+  // Options are checked before any work; only .vtp can hold the arrays.
+  EXPECT_EQ(run({"curvature", tmp.path("p.stl"), "-o", tmp.path("c.stl")}).code, 2);
+  EXPECT_EQ(run({"curvature", tmp.path("p.stl"), "-o", tmp.path("d.vtp"), "--smooth", "-2"}).code, 2);
+  EXPECT_EQ(run({"curvature", tmp.path("p.stl"), "-o", tmp.path("d.vtp"), "--normals", "magic"}).code, 2);
+  const RunResult missing = run({"curvature", tmp.path("none.stl"), "-o", tmp.path("d.vtp")});
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_EQ(tmp.files(), (std::vector<std::string>{"c.vtp", "p.stl"}));
+}
+
 TEST(Cli, DemoWritesItsOutputs) {
   test::TemporaryFolder tmp;
   const RunResult r = run({"demo", "-o", tmp.path("demo"), "--json"});
@@ -210,6 +233,7 @@ TEST(Cli, DemoWritesItsOutputs) {
   for (const Json& file : j["files"]) EXPECT_TRUE(std::filesystem::exists(file.get<std::string>())) << file;
   EXPECT_EQ(j["surface"]["open_ends"].size(), 3u);
   EXPECT_TRUE(std::filesystem::exists(tmp.path("demo/surface.vtp")));
+  EXPECT_TRUE(std::filesystem::exists(tmp.path("demo/curvature.vtp")));
 }
 
 struct VesselInfo {
