@@ -25,6 +25,7 @@ struct Command {
 
 Command add_info_command(CLI::App& parent);
 Command add_curvature_command(CLI::App& parent);
+Command add_centerline_command(CLI::App& parent);
 Command add_synth_command(CLI::App& parent);
 Command add_demo_command(CLI::App& parent);
 

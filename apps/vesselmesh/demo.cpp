@@ -2,6 +2,8 @@
 // Stages that land are added here in pipeline order; each writes its outputs into the folder.
 #include "commands.h"
 
+#include "centerline/distance_map.h"
+#include "centerline/extract.h"
 #include "io/atomic_file.h"
 #include "mesh/error.h"
 
@@ -88,11 +90,30 @@ Command add_demo_command(CLI::App& parent) {
             const analysis::CurvatureField curvature = analysis::curvature(surface.file.mesh, {}, reporter);
             io::write_vtp((folder / "curvature.vtp").string(), surface.file.mesh, curvature_fields(curvature));
 
+            // Stage 3: centerlines and the distance map (drive the distance-adapted meshes and the
+            // boundary layer's thickness).
+            reporter.info("stage 3: centerlines and distance map");
+            const centerline::Centerlines lines = centerline::extract(surface.file.mesh, {}, reporter);
+            std::vector<std::vector<Vec3>> polylines;
+            std::vector<double> radius, branch;
+            for (const centerline::Branch& b : lines.branches) {
+              polylines.push_back(b.points);
+              radius.insert(radius.end(), b.radius.begin(), b.radius.end());
+              branch.push_back(b.id);
+            }
+            io::write_vtp_polylines((folder / "centerlines.vtp").string(), polylines, {Field::scalar("radius", radius)},
+                                    {Field{.name = "branch", .components = 1, .values = branch, .integer = true}});
+            const centerline::DistanceMap map = centerline::distance_map(surface.file.mesh, lines);
+            io::write_vtp((folder / "distance_map.vtp").string(), surface.file.mesh,
+                          {Field::scalar("distance", map.distance), Field::scalar("radius", map.radius)});
+
             const std::vector<std::pair<std::string, std::string>> outputs = {
                 {"surface_info.txt", "what the mesh doctor found, the open ends, statistics"},
                 {"surface_info.json", "the same, machine-readable (vesselmesh info --json)"},
                 {"surface.vtp", "the repaired surface in mm (open in ParaView)"},
                 {"curvature.vtp", "k1, k2, mean and Gaussian curvature (1/mm), principal directions, normals"},
+                {"centerlines.vtp", "centerline branches with the inscribed sphere radius (mm)"},
+                {"distance_map.vtp", "each wall point's distance to the centerline and the radius there (mm)"},
             };
             if (o->common.json) {
               Json summary = {{"input", input.string()}, {"output", o->output}, {"surface", info}};

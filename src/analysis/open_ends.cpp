@@ -181,4 +181,16 @@ std::vector<OpenEnd> open_ends(const TriMesh& mesh, const OpenEndsOptions& optio
   return ends;
 }
 
+TriMesh fan_capped(const TriMesh& mesh, const std::vector<OpenEnd>& ends) {
+  TriMesh closed{mesh.points, mesh.triangles, {}};
+  for (const OpenEnd& end : ends) {
+    if (end.capped) continue;
+    const int centre = closed.num_points();
+    closed.points.push_back(end.center);
+    for (size_t i = 0; i < end.loop.size(); ++i)  // against the wall's edge a -> b
+      closed.triangles.push_back({centre, end.loop[(i + 1) % end.loop.size()], end.loop[i]});
+  }
+  return closed;
+}
+
 }  // namespace vesselmesh::analysis

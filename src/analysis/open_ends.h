@@ -41,4 +41,9 @@ struct OpenEndsOptions {
 
 std::vector<OpenEnd> open_ends(const TriMesh& mesh, const OpenEndsOptions& options = {});
 
+// The surface with each open (not capped) end closed by a fan of triangles from its centre,
+// oriented like the wall: a closed surface for inside tests, not a mesh to simulate on.
+// Labels are dropped.
+TriMesh fan_capped(const TriMesh& mesh, const std::vector<OpenEnd>& ends);
+
 }  // namespace vesselmesh::analysis

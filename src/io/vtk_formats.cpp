@@ -142,6 +142,8 @@ SurfaceData finish_surface(SurfaceData out, std::vector<Field> cell_fields, cons
   const int before = out.mesh.num_points();
   const std::vector<int> remap = mesh::merge_identical_points(out.mesh.points);
   mesh::remap_triangles(out.mesh.triangles, remap);
+  for (std::vector<int>& line : out.lines)
+    for (int& v : line) v = remap[v];
   if (out.mesh.num_points() != before) {
     for (Field& field : out.point_data) {
       std::vector<double> merged(static_cast<size_t>(out.mesh.num_points()) * field.components);
@@ -158,27 +160,9 @@ SurfaceData read_vtk_surface(const std::string& path, VtkFormat format, const st
   return parse_vtk_xml_surface(read_file(path), format, path, label_array);
 }
 
-void write_vtp(const std::string& path, const TriMesh& mesh, const std::vector<Field>& point_data,
-               const std::vector<Field>& cell_data) {
-  keep_vtk_errors();
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(mesh.num_points());
-  for (int i = 0; i < mesh.num_points(); ++i) points->SetPoint(i, mesh.points[i].x(), mesh.points[i].y(), mesh.points[i].z());
-  vtkNew<vtkCellArray> polys;
-  polys->AllocateExact(mesh.num_triangles(), 3 * mesh.num_triangles());
-  for (const Triangle& f : mesh.triangles) {
-    const vtkIdType ids[3] = {f[0], f[1], f[2]};
-    polys->InsertNextCell(3, ids);
-  }
-  vtkNew<vtkPolyData> poly;
-  poly->SetPoints(points);
-  poly->SetPolys(polys);
-  for (const Field& field : point_data) poly->GetPointData()->AddArray(to_vtk_array(field, mesh.num_points(), path));
-  if (mesh.has_labels())
-    poly->GetCellData()->AddArray(to_vtk_array(Field::labels("tag", mesh.labels), mesh.num_triangles(), path));
-  for (const Field& field : cell_data) poly->GetCellData()->AddArray(to_vtk_array(field, mesh.num_triangles(), path));
+namespace {
 
+void write_polydata(const std::string& path, vtkPolyData* poly) {
   write_atomically(path, [&](const std::string& temporary) {
     vtkNew<vtkXMLPolyDataWriter> writer;
     writer->SetFileName(temporary.c_str());
@@ -189,6 +173,55 @@ void write_vtp(const std::string& path, const TriMesh& mesh, const std::vector<F
     if (writer->Write() != 1 || vtk_failed())
       throw InputError(fmt::format("{}: cannot write: {}", path, vtk_error_text()));
   });
+}
+
+vtkSmartPointer<vtkPoints> to_vtk_points(const std::vector<Vec3>& points) {
+  auto out = vtkSmartPointer<vtkPoints>::New();
+  out->SetDataTypeToDouble();
+  out->SetNumberOfPoints(static_cast<vtkIdType>(points.size()));
+  for (size_t i = 0; i < points.size(); ++i) out->SetPoint(static_cast<vtkIdType>(i), points[i].x(), points[i].y(), points[i].z());
+  return out;
+}
+
+}  // namespace
+
+void write_vtp(const std::string& path, const TriMesh& mesh, const std::vector<Field>& point_data,
+               const std::vector<Field>& cell_data) {
+  keep_vtk_errors();
+  vtkNew<vtkCellArray> polys;
+  polys->AllocateExact(mesh.num_triangles(), 3 * mesh.num_triangles());
+  for (const Triangle& f : mesh.triangles) {
+    const vtkIdType ids[3] = {f[0], f[1], f[2]};
+    polys->InsertNextCell(3, ids);
+  }
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(to_vtk_points(mesh.points));
+  poly->SetPolys(polys);
+  for (const Field& field : point_data) poly->GetPointData()->AddArray(to_vtk_array(field, mesh.num_points(), path));
+  if (mesh.has_labels())
+    poly->GetCellData()->AddArray(to_vtk_array(Field::labels("tag", mesh.labels), mesh.num_triangles(), path));
+  for (const Field& field : cell_data) poly->GetCellData()->AddArray(to_vtk_array(field, mesh.num_triangles(), path));
+  write_polydata(path, poly);
+}
+
+void write_vtp_polylines(const std::string& path, const std::vector<std::vector<Vec3>>& lines,
+                         const std::vector<Field>& point_data, const std::vector<Field>& cell_data) {
+  keep_vtk_errors();
+  std::vector<Vec3> points;
+  vtkNew<vtkCellArray> cells;
+  for (const auto& line : lines) {
+    std::vector<vtkIdType> ids;
+    for (const Vec3& p : line) ids.push_back(static_cast<vtkIdType>(points.size())), points.push_back(p);
+    cells->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+  }
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(to_vtk_points(points));
+  poly->SetLines(cells);
+  for (const Field& field : point_data)
+    poly->GetPointData()->AddArray(to_vtk_array(field, static_cast<int>(points.size()), path));
+  for (const Field& field : cell_data)
+    poly->GetCellData()->AddArray(to_vtk_array(field, static_cast<int>(lines.size()), path));
+  write_polydata(path, poly);
 }
 
 }  // namespace vesselmesh::io

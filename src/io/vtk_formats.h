@@ -24,6 +24,7 @@ struct SurfaceData {
   std::vector<Field> point_data;  // one value tuple per mesh point
   std::vector<Field> cell_data;   // one value tuple per mesh triangle (labels excluded)
   std::string label_array;        // the cell array the labels came from, or empty
+  std::vector<std::vector<int>> lines;  // VTP polylines (indices into mesh.points), if any
 };
 
 SurfaceData read_vtk_surface(const std::string& path, VtkFormat format,
@@ -32,6 +33,13 @@ SurfaceData read_vtk_surface(const std::string& path, VtkFormat format,
 // The same for a VTP or VTU held in memory (`name` appears in error messages).
 SurfaceData parse_vtk_xml_surface(std::string_view bytes, VtkFormat format, const std::string& name,
                                   const std::string& label_array = "");
+
+// The polylines of a VTP (e.g. centerlines): `lines` index `mesh.points`; point data kept.
+SurfaceData read_vtp_polylines(const std::string& path);
+
+// Polylines as VTK XML PolyData (each line one cell), with point and cell data, atomically.
+void write_vtp_polylines(const std::string& path, const std::vector<std::vector<Vec3>>& lines,
+                         const std::vector<Field>& point_data = {}, const std::vector<Field>& cell_data = {});
 
 // VTK XML PolyData, binary and compressed, Float64 points, written atomically. The mesh's
 // labels (if any) are written as the Int32 cell array `tag`. Field sizes must match.

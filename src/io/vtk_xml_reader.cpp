@@ -5,6 +5,8 @@
 #include "io/vtk_formats.h"
 #include "io/vtk_internal.h"
 
+#include "io/atomic_file.h"
+
 #include "mesh/error.h"
 
 #include <fmt/format.h>
@@ -36,7 +38,7 @@ class XmlSurfaceReader {
   XmlSurfaceReader(std::string_view bytes, VtkFormat format, const std::string& name)
       : bytes_(bytes), stream_(std::string(bytes)), format_(format), name_(name), input_size_(bytes.size()) {}
 
-  SurfaceData read(const std::string& label_array);
+  SurfaceData read(const std::string& label_array, bool lines_only);
 
  private:
   [[noreturn]] void fail(const std::string& what) const { throw InputError(fmt::format("{}: {}", name_, what)); }
@@ -55,7 +57,9 @@ class XmlSurfaceReader {
   std::vector<long long> read_index_array(vtkXMLDataElement* parent, const char* array_name, long long count,
                                           const char* what);
   void read_piece(vtkXMLDataElement* piece, SurfaceData& out, std::vector<Field>& cell_fields);
-  void read_polydata_cells(vtkXMLDataElement* piece, int point_base, long long cell_base, TriMesh& mesh,
+  template <typename Visit>
+  void read_cell_section(vtkXMLDataElement* piece, const char* section, Visit visit);
+  void read_polydata_cells(vtkXMLDataElement* piece, int point_base, long long cell_base, SurfaceData& out,
                            std::vector<long long>& cell_of_triangle);
   void read_grid_cells(vtkXMLDataElement* piece, long long cells, int point_base, long long cell_base,
                        TriMesh& mesh, std::vector<long long>& cell_of_triangle);
@@ -294,30 +298,47 @@ void XmlSurfaceReader::add_polygon(const long long* ids, long long n, long long 
   }
 }
 
+template <typename Visit>
+void XmlSurfaceReader::read_cell_section(vtkXMLDataElement* piece, const char* section, Visit visit) {
+  const long long n = count_attribute(piece, (std::string("NumberOf") + section).c_str(), false);
+  if (n == 0) return;
+  vtkXMLDataElement* element = piece->FindNestedElementWithName(section);
+  if (!element) fail(fmt::format("the piece declares {} {} but has no <{}>", n, section, section));
+  const std::vector<long long> offsets = read_index_array(element, "offsets", n, section);
+  const long long total = offsets.back();
+  if (static_cast<double>(total) > 4.0 * static_cast<double>(input_size_) * 1100.0 + 1e6)
+    fail(fmt::format("<{}> offsets declare {} indices, more than the file can hold", section, total));
+  const std::vector<long long> ids = read_index_array(element, "connectivity", total, section);
+  long long start = 0;
+  for (long long c = 0; c < n; ++c) {
+    if (offsets[c] < start || offsets[c] > total)
+      fail(fmt::format("<{}> offsets are not increasing up to {} at cell {}", section, total, c));
+    visit(ids.data() + start, offsets[c] - start, c);
+    start = offsets[c];
+  }
+}
+
 void XmlSurfaceReader::read_polydata_cells(vtkXMLDataElement* piece, int point_base, long long cell_base,
-                                           TriMesh& mesh, std::vector<long long>& cell_of_triangle) {
+                                           SurfaceData& out, std::vector<long long>& cell_of_triangle) {
   const long long points = count_attribute(piece, "NumberOfPoints", true);
   // Cells are numbered verts, lines, polys, strips (cell data follows that order).
-  long long cell = cell_base + count_attribute(piece, "NumberOfVerts", false) + count_attribute(piece, "NumberOfLines", false);
-  for (const char* section : {"Polys", "Strips"}) {
-    const long long n = count_attribute(piece, (std::string("NumberOf") + section).c_str(), false);
-    if (n == 0) continue;
-    vtkXMLDataElement* element = piece->FindNestedElementWithName(section);
-    if (!element) fail(fmt::format("the piece declares {} {} but has no <{}>", n, section, section));
-    const std::vector<long long> offsets = read_index_array(element, "offsets", n, section);
-    const long long total = offsets.back();
-    if (static_cast<double>(total) > 4.0 * static_cast<double>(input_size_) * 1100.0 + 1e6)
-      fail(fmt::format("<{}> offsets declare {} indices, more than the file can hold", section, total));
-    const std::vector<long long> ids = read_index_array(element, "connectivity", total, section);
-    long long start = 0;
-    for (long long c = 0; c < n; ++c, ++cell) {
-      if (offsets[c] < start || offsets[c] > total)
-        fail(fmt::format("<{}> offsets are not increasing up to {} at cell {}", section, total, c));
-      add_polygon(ids.data() + start, offsets[c] - start, points, point_base, cell, mesh, cell_of_triangle,
-                  std::strcmp(section, "Strips") == 0);
-      start = offsets[c];
+  const long long lines = count_attribute(piece, "NumberOfLines", false);
+  read_cell_section(piece, "Lines", [&](const long long* ids, long long n, long long) {
+    std::vector<int> line;
+    for (long long i = 0; i < n; ++i) {
+      if (ids[i] >= points) fail(fmt::format("a line uses point {}, but the piece has {} points", ids[i], points));
+      line.push_back(static_cast<int>(ids[i]) + point_base);
     }
-  }
+    out.lines.push_back(std::move(line));
+  });
+  const long long polys_start = cell_base + count_attribute(piece, "NumberOfVerts", false) + lines;
+  read_cell_section(piece, "Polys", [&](const long long* ids, long long n, long long c) {
+    add_polygon(ids, n, points, point_base, polys_start + c, out.mesh, cell_of_triangle, false);
+  });
+  const long long strips_start = polys_start + count_attribute(piece, "NumberOfPolys", false);
+  read_cell_section(piece, "Strips", [&](const long long* ids, long long n, long long c) {
+    add_polygon(ids, n, points, point_base, strips_start + c, out.mesh, cell_of_triangle, true);
+  });
 }
 
 void XmlSurfaceReader::read_grid_cells(vtkXMLDataElement* piece, long long cells, int point_base,
@@ -391,7 +412,7 @@ void XmlSurfaceReader::read_piece(vtkXMLDataElement* piece, SurfaceData& out, st
   }
   std::vector<long long> cell_of_triangle;
   const size_t first_triangle = out.mesh.triangles.size();
-  if (format_ == VtkFormat::vtp) read_polydata_cells(piece, point_base, 0, out.mesh, cell_of_triangle);
+  if (format_ == VtkFormat::vtp) read_polydata_cells(piece, point_base, 0, out, cell_of_triangle);
   else read_grid_cells(piece, cells, point_base, 0, out.mesh, cell_of_triangle);
 
   std::vector<Field> point_fields = read_fields(piece->FindNestedElementWithName("PointData"), points, "point data");
@@ -407,7 +428,7 @@ void XmlSurfaceReader::read_piece(vtkXMLDataElement* piece, SurfaceData& out, st
   append_piece_fields(cell_fields, piece_cells, first_triangle == 0);
 }
 
-SurfaceData XmlSurfaceReader::read(const std::string& label_array) {
+SurfaceData XmlSurfaceReader::read(const std::string& label_array, bool lines_only) {
   parse_root();
   SurfaceData out;
   std::vector<Field> cell_fields;
@@ -419,7 +440,8 @@ SurfaceData XmlSurfaceReader::read(const std::string& label_array) {
     ++pieces;
   }
   if (pieces == 0) fail("no <Piece> element");
-  if (out.mesh.triangles.empty()) fail("contains no triangles or polygons (a surface is needed)");
+  if (!lines_only && out.mesh.triangles.empty()) fail("contains no triangles or polygons (a surface is needed)");
+  if (lines_only && out.lines.empty()) fail("contains no lines (polylines are needed)");
   return finish_surface(std::move(out), std::move(cell_fields), label_array, name_);
 }
 
@@ -433,9 +455,20 @@ SurfaceData parse_vtk_xml_surface(std::string_view bytes, VtkFormat format, cons
   if (bytes.find("<VTKFile") == std::string_view::npos)
     throw InputError(fmt::format("{}: not a VTK XML file (no <VTKFile> element)", name));
   try {
-    return XmlSurfaceReader(bytes, format, name).read(label_array);
+    return XmlSurfaceReader(bytes, format, name).read(label_array, false);
   } catch (const std::bad_alloc&) {
     throw InputError(fmt::format("{}: the file declares more data than fits in memory (a damaged file?)", name));
+  }
+}
+
+SurfaceData read_vtp_polylines(const std::string& path) {
+  keep_vtk_errors();
+  const std::string bytes = read_file(path);
+  if (bytes.empty()) throw InputError(fmt::format("{}: the file is empty", path));
+  try {
+    return XmlSurfaceReader(bytes, VtkFormat::vtp, path).read("", true);
+  } catch (const std::bad_alloc&) {
+    throw InputError(fmt::format("{}: the file declares more data than fits in memory (a damaged file?)", path));
   }
 }
 

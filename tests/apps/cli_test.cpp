@@ -2,6 +2,7 @@
 // outputs. Runs the built program.
 #include "io/stl.h"
 #include "io/surface.h"
+#include "io/vtk_formats.h"
 #include "mesh/connectivity.h"
 #include "synth/shapes.h"
 #include "test_support.h"
@@ -225,6 +226,35 @@ TEST(Cli, CurvatureWritesTheContractArrays) {
   EXPECT_EQ(tmp.files(), (std::vector<std::string>{"c.vtp", "p.stl"}));
 }
 
+TEST(Cli, CenterlineWritesBranchesAndTheDistanceMap) {
+  test::TemporaryFolder tmp;
+  ASSERT_EQ(run({"synth", "bifurcation", "--resolution", "0.5", "-o", tmp.path("y.stl")}).code, 0);
+  const RunResult r = run({"centerline", tmp.path("y.stl"), "-o", tmp.path("c.vtp"), "--distance-map", tmp.path("d.vtp"), "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = r.json();
+  EXPECT_EQ(j["branches"].size(), 3u);
+  EXPECT_EQ(j["bifurcations"].size(), 1u);
+  EXPECT_EQ(j["outlets"].size(), 2u);
+  for (const Json& b : j["branches"]) EXPECT_GT(b["mean_radius"].get<double>(), 1.5);
+  const io::SurfaceData lines = io::read_vtp_polylines(tmp.path("c.vtp"));
+  EXPECT_EQ(lines.lines.size(), 3u);
+  ASSERT_EQ(lines.point_data.size(), 1u);
+  EXPECT_EQ(lines.point_data[0].name, "radius");
+  const io::SurfaceFile map = io::read_surface(tmp.path("d.vtp"));
+  ASSERT_EQ(map.point_data.size(), 2u);
+  EXPECT_EQ(map.point_data[0].name, "distance");
+  EXPECT_EQ(map.point_data[1].name, "radius");
+  // Bad requests fail before any work.
+  EXPECT_EQ(run({"centerline", tmp.path("y.stl"), "-o", tmp.path("c.stl")}).code, 2);
+  EXPECT_EQ(run({"centerline", tmp.path("y.stl"), "-o", tmp.path("e.vtp"), "--source-point", "1,2"}).code, 2);
+  EXPECT_EQ(run({"centerline", tmp.path("y.stl"), "-o", tmp.path("e.vtp"), "--inlet", "9"}).code, 2);
+  ASSERT_EQ(run({"synth", "sphere", "-o", tmp.path("s.stl")}).code, 0);
+  const RunResult closed = run({"centerline", tmp.path("s.stl"), "-o", tmp.path("e.vtp")});
+  EXPECT_EQ(closed.code, 2);
+  EXPECT_NE(last_line(closed.err).find("no open or capped end"), std::string::npos) << closed.err;
+  EXPECT_EQ(tmp.files(), (std::vector<std::string>{"c.vtp", "d.vtp", "s.stl", "y.stl"}));
+}
+
 TEST(Cli, DemoWritesItsOutputs) {
   test::TemporaryFolder tmp;
   const RunResult r = run({"demo", "-o", tmp.path("demo"), "--json"});
@@ -234,6 +264,8 @@ TEST(Cli, DemoWritesItsOutputs) {
   EXPECT_EQ(j["surface"]["open_ends"].size(), 3u);
   EXPECT_TRUE(std::filesystem::exists(tmp.path("demo/surface.vtp")));
   EXPECT_TRUE(std::filesystem::exists(tmp.path("demo/curvature.vtp")));
+  EXPECT_TRUE(std::filesystem::exists(tmp.path("demo/centerlines.vtp")));
+  EXPECT_TRUE(std::filesystem::exists(tmp.path("demo/distance_map.vtp")));
 }
 
 struct VesselInfo {
