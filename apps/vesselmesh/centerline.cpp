@@ -44,6 +44,23 @@ Json branch_json(const centerline::Branch& b) {
 
 }  // namespace
 
+void write_centerlines(const std::string& path, const centerline::Centerlines& c) {
+  std::vector<std::vector<Vec3>> lines;
+  std::vector<double> radius, branch_ids;
+  for (const centerline::Branch& b : c.branches) {
+    lines.push_back(b.points);
+    radius.insert(radius.end(), b.radius.begin(), b.radius.end());
+    branch_ids.push_back(b.id);
+  }
+  io::write_vtp_polylines(path, lines, {Field::scalar("radius", radius)},
+                          {Field{.name = "branch", .components = 1, .values = branch_ids, .integer = true}});
+}
+
+void write_distance_map(const std::string& path, const TriMesh& surface, const centerline::Centerlines& c) {
+  const centerline::DistanceMap map = centerline::distance_map(surface, c);
+  io::write_vtp(path, surface, {Field::scalar("distance", map.distance), Field::scalar("radius", map.radius)});
+}
+
 Command add_centerline_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand(
       "centerline",
@@ -88,20 +105,8 @@ Command add_centerline_command(CLI::App& parent) {
             } catch (const InputError& e) {
               throw InputError(fmt::format("{}: {}", o->input, e.what()));
             }
-            std::vector<std::vector<Vec3>> lines;
-            std::vector<double> radius, branch_ids;
-            for (const centerline::Branch& b : c.branches) {
-              lines.push_back(b.points);
-              radius.insert(radius.end(), b.radius.begin(), b.radius.end());
-              branch_ids.push_back(b.id);
-            }
-            io::write_vtp_polylines(o->output, lines, {Field::scalar("radius", radius)},
-                                    {Field{.name = "branch", .components = 1, .values = branch_ids, .integer = true}});
-            if (!o->distance_map.empty()) {
-              const centerline::DistanceMap map = centerline::distance_map(surface.file.mesh, c);
-              io::write_vtp(o->distance_map, surface.file.mesh,
-                            {Field::scalar("distance", map.distance), Field::scalar("radius", map.radius)});
-            }
+            write_centerlines(o->output, c);
+            if (!o->distance_map.empty()) write_distance_map(o->distance_map, surface.file.mesh, c);
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if (o->common.json) {
               Json branches = Json::array(), bifurcations = Json::array();

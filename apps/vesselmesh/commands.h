@@ -6,6 +6,7 @@
 
 #include "analysis/curvature.h"
 #include "analysis/open_ends.h"
+#include "centerline/extract.h"
 #include "io/surface.h"
 #include "mesh/clean.h"
 #include "mesh/statistics.h"
@@ -54,5 +55,10 @@ void write_repaired(const std::string& path, const CheckedSurface& surface);
 // The point-data arrays of the curvature contract: k1, k2, mean_curvature, gauss_curvature,
 // dir1, dir2, normal.
 std::vector<Field> curvature_fields(const analysis::CurvatureField& curvature);
+
+// Centerlines as VTP polylines (point data radius, cell data branch), and the distance map
+// as the surface with point data distance and radius.
+void write_centerlines(const std::string& path, const centerline::Centerlines& centerlines);
+void write_distance_map(const std::string& path, const TriMesh& surface, const centerline::Centerlines& centerlines);
 
 }  // namespace vesselmesh::cli

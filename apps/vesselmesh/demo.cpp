@@ -2,8 +2,6 @@
 // Stages that land are added here in pipeline order; each writes its outputs into the folder.
 #include "commands.h"
 
-#include "centerline/distance_map.h"
-#include "centerline/extract.h"
 #include "io/atomic_file.h"
 #include "mesh/error.h"
 
@@ -94,18 +92,8 @@ Command add_demo_command(CLI::App& parent) {
             // boundary layer's thickness).
             reporter.info("stage 3: centerlines and distance map");
             const centerline::Centerlines lines = centerline::extract(surface.file.mesh, {}, reporter);
-            std::vector<std::vector<Vec3>> polylines;
-            std::vector<double> radius, branch;
-            for (const centerline::Branch& b : lines.branches) {
-              polylines.push_back(b.points);
-              radius.insert(radius.end(), b.radius.begin(), b.radius.end());
-              branch.push_back(b.id);
-            }
-            io::write_vtp_polylines((folder / "centerlines.vtp").string(), polylines, {Field::scalar("radius", radius)},
-                                    {Field{.name = "branch", .components = 1, .values = branch, .integer = true}});
-            const centerline::DistanceMap map = centerline::distance_map(surface.file.mesh, lines);
-            io::write_vtp((folder / "distance_map.vtp").string(), surface.file.mesh,
-                          {Field::scalar("distance", map.distance), Field::scalar("radius", map.radius)});
+            write_centerlines((folder / "centerlines.vtp").string(), lines);
+            write_distance_map((folder / "distance_map.vtp").string(), surface.file.mesh, lines);
 
             const std::vector<std::pair<std::string, std::string>> outputs = {
                 {"surface_info.txt", "what the mesh doctor found, the open ends, statistics"},
