@@ -6,7 +6,9 @@
 
 #include "analysis/curvature.h"
 #include "analysis/open_ends.h"
+#include "centerline/distance_map.h"
 #include "centerline/extract.h"
+#include "sizing/size_field.h"
 #include "io/surface.h"
 #include "mesh/clean.h"
 #include "mesh/statistics.h"
@@ -27,6 +29,7 @@ struct Command {
 Command add_info_command(CLI::App& parent);
 Command add_curvature_command(CLI::App& parent);
 Command add_centerline_command(CLI::App& parent);
+Command add_size_command(CLI::App& parent);
 Command add_synth_command(CLI::App& parent);
 Command add_demo_command(CLI::App& parent);
 
@@ -60,5 +63,23 @@ std::vector<Field> curvature_fields(const analysis::CurvatureField& curvature);
 // as the surface with point data distance and radius.
 void write_centerlines(const std::string& path, const centerline::Centerlines& centerlines);
 void write_distance_map(const std::string& path, const TriMesh& surface, const centerline::Centerlines& centerlines);
+
+// Size-field options shared by `size` and `remesh`, and what sizing computes on the way.
+struct SizingArgs {
+  std::string kind;
+  sizing::SizingOptions options;
+};
+void add_sizing_options(CLI::App& app, SizingArgs& args);
+
+struct SizedSurface {
+  std::optional<analysis::CurvatureField> curvature;
+  std::optional<centerline::Centerlines> centerlines;
+  std::optional<centerline::DistanceMap> distance;
+  sizing::SizeField field;
+};
+SizedSurface size_surface(const CheckedSurface& surface, const SizingArgs& args, const Reporter& reporter);
+// Point data `size` and `metric` (xx, xy, xz, yy, yz, zz).
+std::vector<Field> size_fields(const sizing::SizeField& field);
+Json size_json(const sizing::SizeField& field);
 
 }  // namespace vesselmesh::cli

@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", VESSELMESH_VERSION);
   app.require_subcommand(1);
   app.fallthrough();
-  const std::vector<Command> commands = {add_info_command(app), add_curvature_command(app), add_centerline_command(app),
+  const std::vector<Command> commands = {add_info_command(app), add_curvature_command(app), add_centerline_command(app), add_size_command(app),
                                          add_synth_command(app),
                                          add_demo_command(app)};
   try {

@@ -255,6 +255,30 @@ TEST(Cli, CenterlineWritesBranchesAndTheDistanceMap) {
   EXPECT_EQ(tmp.files(), (std::vector<std::string>{"c.vtp", "d.vtp", "s.stl", "y.stl"}));
 }
 
+TEST(Cli, SizeWritesSizeAndMetric) {
+  test::TemporaryFolder tmp;
+  ASSERT_EQ(run({"synth", "cylinder", "--radius", "3", "--length", "20", "--resolution", "0.3", "-o", tmp.path("p.stl")}).code, 0);
+  const RunResult r = run({"size", tmp.path("p.stl"), "--size", "distance", "--points-per-circle", "20", "-o",
+                           tmp.path("f.vtp"), "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = r.json();
+  EXPECT_EQ(j["kind"], "distance");
+  EXPECT_NEAR(j["size"]["median"].get<double>(), 2 * M_PI * 3 / 20, 0.01);
+  const io::SurfaceFile field = io::read_surface(tmp.path("f.vtp"));
+  ASSERT_EQ(field.point_data.size(), 2u);
+  EXPECT_EQ(field.point_data[0].name, "size");
+  EXPECT_EQ(field.point_data[1].name, "metric");
+  EXPECT_EQ(field.point_data[1].components, 6);
+  const RunResult target = run({"size", tmp.path("p.stl"), "--size", "anisotropic", "--target-triangles", "3000", "-o",
+                                tmp.path("g.vtp"), "--json"});
+  ASSERT_EQ(target.code, 0) << target.err;
+  EXPECT_NEAR(target.json()["predicted_triangles"].get<double>(), 3000, 1);
+  EXPECT_EQ(run({"size", tmp.path("p.stl"), "--size", "wobbly", "-o", tmp.path("h.vtp")}).code, 2);
+  EXPECT_EQ(run({"size", tmp.path("p.stl"), "--size", "uniform", "-o", tmp.path("h.vtp")}).code, 2);  // no --h
+  EXPECT_EQ(run({"size", tmp.path("p.stl"), "--size", "uniform", "--h", "1", "-o", tmp.path("h.stl")}).code, 2);
+  EXPECT_EQ(tmp.files(), (std::vector<std::string>{"f.vtp", "g.vtp", "p.stl"}));
+}
+
 TEST(Cli, DemoWritesItsOutputs) {
   test::TemporaryFolder tmp;
   const RunResult r = run({"demo", "-o", tmp.path("demo"), "--json"});

@@ -1,0 +1,126 @@
+// vesselmesh size: the size field (an SPD metric per point) the remesher adapts to.
+#include "commands.h"
+
+#include "analysis/curvature.h"
+#include "centerline/distance_map.h"
+#include "io/surface.h"
+#include "mesh/error.h"
+#include "sizing/metric.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+
+namespace vesselmesh::cli {
+
+void add_sizing_options(CLI::App& app, SizingArgs& args) {
+  app.add_option("--size", args.kind, "Size field: uniform, distance, curvature or anisotropic")
+      ->required()
+      ->check(CLI::IsMember({"uniform", "distance", "curvature", "anisotropic"}));
+  app.add_option("--h", args.options.h, "Uniform size (mm)");
+  app.add_option("--points-per-circle", args.options.points_per_circle,
+                 "N: points around the vessel (distance) or on the osculating circle (curvature)")
+      ->capture_default_str();
+  app.add_option("--hmin", args.options.hmin, "Smallest size (mm; default a tenth of the small vessels' radius)");
+  app.add_option("--hmax", args.options.hmax, "Largest size (mm; default the large vessels' radius)");
+  app.add_option("--gradation", args.options.gradation, "Largest growth of the size per unit of metric length (<= 1: none)")
+      ->capture_default_str();
+  app.add_option("--max-chord-error", args.options.max_chord_error,
+                 "Also bound the size by this chord error (mm): h <= sqrt(8 eps / |k_max|)");
+  app.add_option("--target-triangles", args.options.target_triangles, "Scale the field to about this many triangles");
+}
+
+SizedSurface size_surface(const CheckedSurface& surface, const SizingArgs& args, const Reporter& reporter) {
+  SizedSurface out;
+  sizing::SizingOptions options = args.options;
+  options.kind = sizing::parse_size_kind(args.kind);
+  const TriMesh& mesh = surface.file.mesh;
+  const bool needs_curvature = options.kind == sizing::SizeKind::curvature ||
+                               options.kind == sizing::SizeKind::anisotropic || options.max_chord_error > 0.0;
+  if (needs_curvature || options.kind != sizing::SizeKind::uniform)
+    out.curvature = analysis::curvature(mesh, {}, reporter);
+  if (options.kind != sizing::SizeKind::uniform) {
+    // Centerlines give the distance field and the radius range; without ends, the curvature
+    // kinds fall back on the curvature for the range.
+    try {
+      out.centerlines = centerline::extract(mesh, {}, reporter);
+      out.distance = centerline::distance_map(mesh, *out.centerlines);
+    } catch (const InputError& e) {
+      if (options.kind == sizing::SizeKind::distance) throw InputError(fmt::format("{}: {}", surface.file.path, e.what()));
+      reporter.warning(fmt::format("no centerlines ({}); the radius range comes from the curvature", e.what()));
+    }
+  }
+  sizing::SizeInputs inputs{.curvature = out.curvature ? &*out.curvature : nullptr,
+                            .distance = out.distance ? &*out.distance : nullptr};
+  out.field = sizing::make_size_field(mesh, options, inputs, reporter);
+  return out;
+}
+
+std::vector<Field> size_fields(const sizing::SizeField& field) {
+  Field metric{.name = "metric", .components = 6, .values = {}};
+  metric.values.reserve(field.metric.size() * 6);
+  for (const Sym3& m : field.metric) metric.values.insert(metric.values.end(), m.v.begin(), m.v.end());
+  return {Field::scalar("size", field.size), metric};
+}
+
+Json size_json(const sizing::SizeField& field) {
+  std::vector<double> sizes = field.size;
+  std::sort(sizes.begin(), sizes.end());
+  auto at = [&](double q) { return round_to(sizes[static_cast<size_t>(q * (sizes.size() - 1))]); };
+  return {{"kind", sizing::size_kind_name(field.kind)},
+          {"hmin", round_to(field.hmin)},
+          {"hmax", std::isfinite(field.hmax) ? Json(round_to(field.hmax)) : Json(nullptr)},
+          {"scale", round_to(field.scale)},
+          {"predicted_triangles", std::lround(field.predicted_triangles)},
+          {"gradation_passes", field.gradation_passes},
+          {"size", {{"min", at(0.0)}, {"median", at(0.5)}, {"max", at(1.0)}}}};
+}
+
+Command add_size_command(CLI::App& parent) {
+  CLI::App* app = parent.add_subcommand(
+      "size", "The size field the remesher adapts to: per point an SPD metric (isotropic: I/h^2) from a uniform size, "
+              "the distance to the centerline, the mean curvature, or the principal curvatures (anisotropic); clamped, "
+              "graded, optionally scaled to a triangle count. Writes point data size (mm) and metric (xx,xy,xz,yy,yz,zz)");
+  struct Options {
+    std::string input, output, units;
+    SizingArgs sizing;
+    CommonOptions common;
+  };
+  auto o = std::make_shared<Options>();
+  app->add_option("SURFACE", o->input, "Surface file: .stl, .vtp, .vtu, .ply, .obj, .msh")->required();
+  app->add_option("-o,--output", o->output, "Output .vtp with point data size and metric")->required();
+  app->add_option("--units", o->units, "Length unit of the file: um, mm, cm or m (default mm)");
+  add_sizing_options(*app, o->sizing);
+  add_common_options(*app, o->common);
+  return {app, [o] {
+            if (io::surface_format(o->output) != io::SurfaceFormat::vtp)
+              throw OptionError(fmt::format("{}: the size field is written as VTP point data: use a .vtp name", o->output));
+            TerminalReporter reporter(o->common.quiet);
+            SurfaceCheckOptions check;
+            if (!o->units.empty()) check.units = o->units;
+            check.clean.find_self_intersections = false;
+            const CheckedSurface surface = check_surface(o->input, check, reporter);
+            const auto start = std::chrono::steady_clock::now();
+            const SizedSurface sized = size_surface(surface, o->sizing, reporter);
+            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            io::write_vtp(o->output, surface.file.mesh, size_fields(sized.field));
+            if (o->common.json) {
+              Json json = size_json(sized.field);
+              json["input"] = o->input;
+              json["output"] = o->output;
+              json["units"] = "mm";
+              json["points"] = surface.file.mesh.num_points();
+              json["seconds"] = round_to(seconds, 4);
+              print_json(json);
+            } else {
+              reporter.info(fmt::format("{} size field: sizes {:.3g} to {:.3g} mm, about {:.0f} triangles; wrote {}",
+                                        o->sizing.kind, *std::min_element(sized.field.size.begin(), sized.field.size.end()),
+                                        *std::max_element(sized.field.size.begin(), sized.field.size.end()),
+                                        sized.field.predicted_triangles, o->output));
+            }
+            return 0;
+          }};
+}
+
+}  // namespace vesselmesh::cli

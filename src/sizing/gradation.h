@@ -1,0 +1,22 @@
+// Size gradation: limits how fast the size may grow across the surface, so that a small size
+// spreads to its neighbourhood instead of meeting a large one across a single edge.
+// With growth factor g, along an edge e from point i to j, the metric of i spread to j is
+// M_i / (1 + |e|_{M_i} ln g)^2 (sizes grow linearly with the distance in i's metric, slope
+// ln g: about g per unit of metric length), and j keeps M_j cap (M_i spread): F. Alauzet, "Size
+// gradation control of anisotropic meshes", FEAD 46 (2010), the anisotropic form of
+// Borouchaki's H-correction. Isotropic fields keep scalars: h_j <= h_i + |e| ln g.
+// Passes over the edges in index order until nothing changes: deterministic.
+#pragma once
+
+#include "mesh/sym3.h"
+#include "mesh/trimesh.h"
+
+#include <vector>
+
+namespace vesselmesh::sizing {
+
+// In place; returns the number of passes made. `growth` <= 1 leaves the field as it is.
+int grade_sizes(const TriMesh& mesh, std::vector<double>& sizes, double growth);
+int grade_metrics(const TriMesh& mesh, std::vector<Sym3>& metrics, double growth);
+
+}  // namespace vesselmesh::sizing
