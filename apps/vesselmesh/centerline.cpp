@@ -76,7 +76,7 @@ Command add_centerline_command(CLI::App& parent) {
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
-  app->add_option("SURFACE", o->input, "Surface file: .stl, .vtp, .vtu, .ply, .obj, .msh")->required();
+  app->add_option("SURFACE", o->input, "Surface file: .stl, .vtp, .vtu, .ply, .obj, .msh, .mesh")->required();
   app->add_option("-o,--output", o->output, "Centerlines .vtp: one polyline per branch, point data radius, cell data branch")
       ->required();
   app->add_option("--distance-map", o->distance_map, "Also write the surface (.vtp) with point data distance and radius");

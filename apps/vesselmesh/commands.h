@@ -8,6 +8,7 @@
 #include "analysis/open_ends.h"
 #include "centerline/distance_map.h"
 #include "centerline/extract.h"
+#include "remesh/adapt.h"
 #include "sizing/size_field.h"
 #include "io/surface.h"
 #include "mesh/clean.h"
@@ -30,6 +31,7 @@ Command add_info_command(CLI::App& parent);
 Command add_curvature_command(CLI::App& parent);
 Command add_centerline_command(CLI::App& parent);
 Command add_size_command(CLI::App& parent);
+Command add_remesh_command(CLI::App& parent);
 Command add_synth_command(CLI::App& parent);
 Command add_demo_command(CLI::App& parent);
 
@@ -69,7 +71,7 @@ struct SizingArgs {
   std::string kind;
   sizing::SizingOptions options;
 };
-void add_sizing_options(CLI::App& app, SizingArgs& args);
+void add_sizing_options(CLI::App& app, SizingArgs& args, bool size_required = true);
 
 struct SizedSurface {
   std::optional<analysis::CurvatureField> curvature;
@@ -81,5 +83,10 @@ SizedSurface size_surface(const CheckedSurface& surface, const SizingArgs& args,
 // Point data `size` and `metric` (xx, xy, xz, yy, yz, zz).
 std::vector<Field> size_fields(const sizing::SizeField& field);
 Json size_json(const sizing::SizeField& field);
+
+// A remeshed surface: point data metric (what it was adapted to), cell data quality (in that
+// metric) and tag (labels); and the figures of `vesselmesh remesh --json`.
+void write_remeshed(const std::string& path, const remesh::RemeshResult& result);
+Json remesh_json(const remesh::RemeshStats& stats);
 
 }  // namespace vesselmesh::cli

@@ -45,7 +45,7 @@ Command add_curvature_command(CLI::App& parent) {
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
-  app->add_option("SURFACE", o->input, "Surface file: .stl, .vtp, .vtu, .ply, .obj, .msh")->required();
+  app->add_option("SURFACE", o->input, "Surface file: .stl, .vtp, .vtu, .ply, .obj, .msh, .mesh")->required();
   app->add_option("-o,--output", o->output, "Output .vtp (the repaired surface in mm with the curvature arrays)")
       ->required();
   app->add_option("--units", o->units, "Length unit of the file: um, mm, cm or m (default mm)");

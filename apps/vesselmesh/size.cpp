@@ -3,6 +3,7 @@
 
 #include "analysis/curvature.h"
 #include "centerline/distance_map.h"
+#include "io/medit.h"
 #include "io/surface.h"
 #include "mesh/error.h"
 #include "sizing/metric.h"
@@ -14,9 +15,9 @@
 
 namespace vesselmesh::cli {
 
-void add_sizing_options(CLI::App& app, SizingArgs& args) {
+void add_sizing_options(CLI::App& app, SizingArgs& args, bool size_required) {
   app.add_option("--size", args.kind, "Size field: uniform, distance, curvature or anisotropic")
-      ->required()
+      ->required(size_required)
       ->check(CLI::IsMember({"uniform", "distance", "curvature", "anisotropic"}));
   app.add_option("--h", args.options.h, "Uniform size (mm)");
   app.add_option("--points-per-circle", args.options.points_per_circle,
@@ -27,7 +28,8 @@ void add_sizing_options(CLI::App& app, SizingArgs& args) {
   app.add_option("--gradation", args.options.gradation, "Largest growth of the size per unit of metric length (<= 1: none)")
       ->capture_default_str();
   app.add_option("--max-chord-error", args.options.max_chord_error,
-                 "Also bound the size by this chord error (mm): h <= sqrt(8 eps / |k_max|)");
+                 "Also bound the size by this chord error (mm): h <= sqrt(8 eps / |k|), the largest |k| (anisotropic: along "
+                 "each principal direction)");
   app.add_option("--target-triangles", args.options.target_triangles, "Scale the field to about this many triangles");
 }
 
@@ -83,15 +85,17 @@ Command add_size_command(CLI::App& parent) {
               "the distance to the centerline, the mean curvature, or the principal curvatures (anisotropic); clamped, "
               "graded, optionally scaled to a triangle count. Writes point data size (mm) and metric (xx,xy,xz,yy,yz,zz)");
   struct Options {
-    std::string input, output, units;
+    std::string input, output, units, medit;
     SizingArgs sizing;
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
-  app->add_option("SURFACE", o->input, "Surface file: .stl, .vtp, .vtu, .ply, .obj, .msh")->required();
+  app->add_option("SURFACE", o->input, "Surface file: .stl, .vtp, .vtu, .ply, .obj, .msh, .mesh")->required();
   app->add_option("-o,--output", o->output, "Output .vtp with point data size and metric")->required();
   app->add_option("--units", o->units, "Length unit of the file: um, mm, cm or m (default mm)");
   add_sizing_options(*app, o->sizing);
+  app->add_option("--medit", o->medit,
+                  "Also write BASE.mesh (the checked surface) and BASE.sol (the metric), Medit files for MMG's mmgs");
   add_common_options(*app, o->common);
   return {app, [o] {
             if (io::surface_format(o->output) != io::SurfaceFormat::vtp)
@@ -105,6 +109,10 @@ Command add_size_command(CLI::App& parent) {
             const SizedSurface sized = size_surface(surface, o->sizing, reporter);
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             io::write_vtp(o->output, surface.file.mesh, size_fields(sized.field));
+            if (!o->medit.empty()) {
+              io::write_medit(o->medit + ".mesh", surface.file.mesh);
+              io::write_medit_metric(o->medit + ".sol", sized.field.metric);
+            }
             if (o->common.json) {
               Json json = size_json(sized.field);
               json["input"] = o->input;

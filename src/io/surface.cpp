@@ -1,5 +1,6 @@
 #include "io/surface.h"
 
+#include "io/medit.h"
 #include "io/msh.h"
 #include "io/obj.h"
 #include "io/ply.h"
@@ -24,7 +25,8 @@ SurfaceFormat surface_format(const std::string& path) {
   if (ext == ".ply") return SurfaceFormat::ply;
   if (ext == ".obj") return SurfaceFormat::obj;
   if (ext == ".msh") return SurfaceFormat::msh;
-  throw OptionError(fmt::format("{}: unknown surface format '{}': use .stl, .vtp, .vtu, .ply, .obj or .msh",
+  if (ext == ".mesh") return SurfaceFormat::medit;
+  throw OptionError(fmt::format("{}: unknown surface format '{}': use .stl, .vtp, .vtu, .ply, .obj, .msh or .mesh",
                                 path, ext.empty() ? "(no extension)" : ext));
 }
 
@@ -44,6 +46,10 @@ SurfaceFile read_surface(const std::string& path, const ReadOptions& options, co
     case SurfaceFormat::msh:
       file.mesh = read_msh_surface(path);
       file.format = "Gmsh MSH";
+      break;
+    case SurfaceFormat::medit:
+      file.mesh = read_medit(path);
+      file.format = "Medit";
       break;
     case SurfaceFormat::ply:
       file.mesh = read_ply(path);
@@ -87,8 +93,9 @@ void write_surface(const std::string& path, const TriMesh& mesh, const std::vect
     case SurfaceFormat::stl: return write_stl(path, mesh);
     case SurfaceFormat::vtp: return write_vtp(path, mesh, point_data, cell_data);
     case SurfaceFormat::msh: return write_msh(path, mesh);
+    case SurfaceFormat::medit: return write_medit(path, mesh);
     default:
-      throw OptionError(fmt::format("{}: cannot write this format: use .stl, .vtp or .msh", path));
+      throw OptionError(fmt::format("{}: cannot write this format: use .stl, .vtp, .msh or .mesh", path));
   }
 }
 

@@ -1,5 +1,6 @@
 // Reading and writing surfaces, the format told by the file's extension:
-// read .stl (binary or ASCII), .vtp, .vtu, .ply, .obj, .msh; write .stl, .vtp, .msh.
+// read .stl (binary or ASCII), .vtp, .vtu, .ply, .obj, .msh, .mesh (Medit); write .stl, .vtp, .msh,
+// .mesh.
 //
 // Reading converts lengths to millimetres from the unit the caller states (`units`, default
 // mm). Writing is atomic: an output file is whole or absent.
@@ -14,7 +15,7 @@
 
 namespace vesselmesh::io {
 
-enum class SurfaceFormat { stl, vtp, vtu, ply, obj, msh };
+enum class SurfaceFormat { stl, vtp, vtu, ply, obj, msh, medit };
 
 // From the extension (case-insensitive). Throws OptionError naming the accepted extensions.
 SurfaceFormat surface_format(const std::string& path);
@@ -37,7 +38,7 @@ struct SurfaceFile : SurfaceData {
 SurfaceFile read_surface(const std::string& path, const ReadOptions& options = {},
                          const Reporter& reporter = silent_reporter());
 
-// Writes by extension (.stl, .vtp, .msh); fields go to VTP only. Throws OptionError for an
+// Writes by extension (.stl, .vtp, .msh, .mesh); fields go to VTP only. Throws OptionError for an
 // extension that cannot be written.
 void write_surface(const std::string& path, const TriMesh& mesh,
                    const std::vector<Field>& point_data = {}, const std::vector<Field>& cell_data = {});

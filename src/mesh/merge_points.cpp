@@ -1,5 +1,6 @@
 #include "mesh/merge_points.h"
 
+#include "mesh/disjoint_sets.h"
 #include "mesh/error.h"
 
 #include <algorithm>
@@ -43,14 +44,6 @@ std::vector<int> compact(std::vector<Vec3>& points, const std::vector<int>& repr
   }
   points.resize(kept);
   return remap;
-}
-
-int find_root(std::vector<int>& parent, int i) {
-  while (parent[i] != i) {
-    parent[i] = parent[parent[i]];
-    i = parent[i];
-  }
-  return i;
 }
 
 }  // namespace
@@ -97,10 +90,13 @@ std::vector<int> merge_identical_points(std::vector<Vec3>& points) {
 std::vector<int> merge_close_points(std::vector<Vec3>& points, std::span<const double> tolerance) {
   const size_t n = points.size();
   VM_CHECK(tolerance.size() == n, "one tolerance per point");
-  std::vector<int> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
+  DisjointSets sets(static_cast<int>(n));
   const double largest = n == 0 ? 0.0 : *std::max_element(tolerance.begin(), tolerance.end());
-  if (!(largest > 0.0)) return compact(points, parent);
+  if (!(largest > 0.0)) {
+    std::vector<int> identity(n);
+    std::iota(identity.begin(), identity.end(), 0);
+    return compact(points, identity);
+  }
 
   // Bucket points in a grid of cells much larger than any tolerance: a point looks only in
   // the cells its own tolerance box touches, one cell in most cases.
@@ -130,14 +126,12 @@ std::vector<int> merge_close_points(std::vector<Vec3>& points, std::span<const d
           for (; it != sorted.end() && it->first == key; ++it) {
             const int j = it->second;
             if (j <= static_cast<int>(i) || (p - points[j]).norm() > std::min(t, tolerance[j])) continue;
-            const int ri = find_root(parent, static_cast<int>(i));
-            const int rj = find_root(parent, j);
-            if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);
+            sets.unite(static_cast<int>(i), j);
           }
         }
   }
   std::vector<int> representative(n);
-  for (size_t i = 0; i < n; ++i) representative[i] = find_root(parent, static_cast<int>(i));
+  for (size_t i = 0; i < n; ++i) representative[i] = sets.find(static_cast<int>(i));
   return compact(points, representative);
 }
 

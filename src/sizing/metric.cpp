@@ -19,6 +19,23 @@ Sym3 metric_from_sizes(const Vec3& d1, double h1, const Vec3& d2, double h2, con
 
 double metric_length(const Sym3& m, const Vec3& e) { return std::sqrt(std::max(0.0, m.form(e, e))); }
 
+double edge_length(const Vec3& a, const Vec3& b, const Sym3& ma, const Sym3& mb) {
+  const Vec3 e = b - a;
+  const double la = metric_length(ma, e), lb = metric_length(mb, e);
+  if (std::abs(la - lb) <= 1e-6 * std::max(la, lb)) return 0.5 * (la + lb);
+  return (la - lb) / std::log(la / lb);
+}
+
+double triangle_quality(const Vec3& a, const Vec3& b, const Vec3& c, const Sym3& ma, const Sym3& mb, const Sym3& mc) {
+  Sym3 m;
+  for (int i = 0; i < 6; ++i) m.v[i] = (ma.v[i] + mb.v[i] + mc.v[i]) / 3.0;
+  const Vec3 e1 = b - a, e2 = c - a, e3 = c - b;
+  const double g11 = m.form(e1, e1), g12 = m.form(e1, e2), g22 = m.form(e2, e2), g33 = m.form(e3, e3);
+  const double sum = g11 + g22 + g33;
+  if (!(sum > 0.0)) return 0.0;
+  return 2.0 * std::sqrt(3.0) * std::sqrt(std::max(0.0, g11 * g22 - g12 * g12)) / sum;
+}
+
 void metric_sizes(const Sym3& m, Vec3& sizes, Eigen::Matrix3d& directions) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(m.matrix());
   const Eigen::Vector3d l = eig.eigenvalues();  // ascending eigenvalues: descending sizes
@@ -54,6 +71,33 @@ Sym3 scale_sizes(const Sym3& m, double s) {
   Sym3 out = m;
   for (double& x : out.v) x /= s * s;
   return out;
+}
+
+namespace {
+
+template <typename F>
+Sym3 apply_to_eigenvalues(const Sym3& m, F f) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(m.matrix());
+  Eigen::Vector3d l = eig.eigenvalues();
+  for (int i = 0; i < 3; ++i) l[i] = f(l[i]);
+  return Sym3::from_matrix(eig.eigenvectors() * l.asDiagonal() * eig.eigenvectors().transpose());
+}
+
+}  // namespace
+
+Sym3 metric_log(const Sym3& m) {
+  return apply_to_eigenvalues(m, [](double l) { return std::log(std::max(l, 1e-300)); });
+}
+
+Sym3 metric_exp(const Sym3& log_m) {
+  return apply_to_eigenvalues(log_m, [](double l) { return std::exp(l); });
+}
+
+Sym3 interpolate_logs(const Sym3* logs, const double* weights, int count) {
+  Sym3 sum;
+  for (int k = 0; k < count; ++k)
+    for (int i = 0; i < 6; ++i) sum.v[i] += weights[k] * logs[k].v[i];
+  return metric_exp(sum);
 }
 
 double tangent_density(const Sym3& m, const Vec3& n) {

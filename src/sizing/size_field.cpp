@@ -93,17 +93,21 @@ std::vector<Sym3> build_metrics(const TriMesh& mesh, const SizingOptions& o, con
       metrics[v] = isotropic_metric(std::clamp(s * raw.size[v], lo, hi));
     }
     if (o.max_chord_error > 0.0) {
-      const double k = std::max(std::abs(in.curvature->k1[v]), std::abs(in.curvature->k2[v]));
-      if (k > 0.0) {
-        const double bound = std::max(std::sqrt(8.0 * o.max_chord_error / k), lo);
-        metrics[v] = intersect(metrics[v], isotropic_metric(bound));
-      }
+      const Sym3 chord = chord_metric(*in.curvature, v, o.max_chord_error, o.kind == SizeKind::anisotropic);
+      metrics[v] = intersect(metrics[v], lo > 0.0 ? clamp_sizes(chord, lo, std::numeric_limits<double>::infinity()) : chord);
     }
   }
   return metrics;
 }
 
 }  // namespace
+
+Sym3 chord_metric(const analysis::CurvatureField& c, int v, double eps, bool anisotropic) {
+  const double d1 = std::abs(c.k1[v]) / (8.0 * eps), d2 = std::abs(c.k2[v]) / (8.0 * eps), dmax = std::max(d1, d2);
+  if (!anisotropic || c.normal[v].squaredNorm() == 0.0) return Sym3::from_matrix(dmax * Eigen::Matrix3d::Identity());
+  const Vec3 &e1 = c.dir1[v], &e2 = c.dir2[v], &n = c.normal[v];
+  return Sym3::from_matrix(d1 * e1 * e1.transpose() + d2 * e2 * e2.transpose() + dmax * n * n.transpose());
+}
 
 SizeKind parse_size_kind(const std::string& name) {
   if (name == "uniform") return SizeKind::uniform;

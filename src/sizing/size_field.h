@@ -6,7 +6,9 @@
 //   anisotropic  M = P diag(1/h1^2, 1/h2^2, 1/hn^2) P^T, P = [dir1, dir2, n], h_i =
 //                2 pi / (|k_i| N) along each principal direction, hn = min(h1, h2).
 // Every size is clamped to [hmin, hmax] (defaults from the vessel's radii, never from its
-// bounding box), bounded by the chord error when asked (h <= sqrt(8 eps / |k_max|)), and
+// bounding box), bounded by the chord error when asked (h <= sqrt(8 eps / |k|) along each
+// direction of normal curvature k: isotropic kinds with the largest |k|, the anisotropic
+// kind along each principal direction), and
 // graded (sizing/gradation.h). A target triangle count scales the whole field (clamps
 // included) so that the predicted count, (4 / sqrt 3) x integral of the metric's tangent
 // density over the surface (unit equilateral triangles), meets it.
@@ -36,7 +38,7 @@ struct SizingOptions {
   double points_per_circle = 20.0;   // N
   double hmin = 0.0, hmax = 0.0;     // <= 0: derived (see SizeInputs)
   double gradation = 1.3;            // growth per unit of metric length; <= 1: none
-  double max_chord_error = 0.0;      // > 0: bound the size by the chord error
+  double max_chord_error = 0.0;      // > 0: bound the size by this chord error
   double target_triangles = 0.0;     // > 0: scale the field to this predicted count
 };
 
@@ -64,6 +66,13 @@ struct SizeField {
 
 SizeField make_size_field(const TriMesh& mesh, const SizingOptions& options, const SizeInputs& inputs,
                           const Reporter& reporter = silent_reporter());
+
+// The chord bound at point v: the largest metric whose unit edges stray at most eps from the
+// surface, an edge of length h along a direction of normal curvature k lying k h^2 / 8 (its
+// sagitta) away at its middle. Isotropic: h = sqrt(8 eps / max(|k1|, |k2|)); anisotropic:
+// h_i = sqrt(8 eps / |k_i|) along each principal direction (no bound where |k_i| = 0), the
+// normal direction as the finer one.
+Sym3 chord_metric(const analysis::CurvatureField& curvature, int v, double eps, bool anisotropic);
 
 // (4 / sqrt 3) sum over points of (mixed area) x (tangent density of the metric).
 double predicted_triangles(const TriMesh& mesh, const std::vector<Sym3>& metrics);

@@ -279,6 +279,41 @@ TEST(Cli, SizeWritesSizeAndMetric) {
   EXPECT_EQ(tmp.files(), (std::vector<std::string>{"f.vtp", "g.vtp", "p.stl"}));
 }
 
+TEST(Cli, RemeshWritesTheSurfaceAndTheContractFigures) {
+  test::TemporaryFolder tmp;
+  ASSERT_EQ(run({"synth", "cylinder", "--radius", "3", "--length", "20", "--resolution", "0.3", "-o", tmp.path("p.stl")}).code, 0);
+  const RunResult r = run({"remesh", tmp.path("p.stl"), "--size", "anisotropic", "--target-triangles", "3000", "-o",
+                           tmp.path("r.vtp"), "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = r.json();
+  for (const char* key : {"points", "triangles", "edges_in_unit_range", "min_angle_deg", "mean_quality", "min_quality",
+                          "hausdorff", "hausdorff_relative", "seconds"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_NEAR(j["triangles"].get<double>(), 3000.0, 90.0);  // the target count, within 3 %
+  EXPECT_GE(j["edges_in_unit_range"].get<double>(), 0.9);
+  EXPECT_LE(j["hausdorff_relative"].get<double>(), 0.02 + 1e-9);
+  const io::SurfaceFile out = io::read_surface(tmp.path("r.vtp"));
+  EXPECT_EQ(out.mesh.num_triangles(), j["triangles"].get<int>());
+  ASSERT_EQ(out.point_data.size(), 1u);
+  EXPECT_EQ(out.point_data[0].name, "metric");
+  // The same through a field file written by `size`, and its Medit twins for mmgs.
+  ASSERT_EQ(run({"size", tmp.path("p.stl"), "--size", "uniform", "--h", "1", "-o", tmp.path("f.vtp"), "--medit",
+                 tmp.path("f")}).code, 0);
+  const RunResult m = run({"remesh", tmp.path("p.stl"), "--metric", tmp.path("f.vtp"), "-o", tmp.path("m.mesh"), "--json"});
+  ASSERT_EQ(m.code, 0) << m.err;
+  EXPECT_GE(m.json()["edges_in_unit_range"].get<double>(), 0.95);
+  EXPECT_EQ(io::read_surface(tmp.path("m.mesh")).mesh.num_triangles(), m.json()["triangles"].get<int>());
+  // Neither or both of --size and --metric, or a field of another surface: exit 2, nothing written.
+  EXPECT_EQ(run({"remesh", tmp.path("p.stl"), "-o", tmp.path("x.vtp")}).code, 2);
+  EXPECT_EQ(run({"remesh", tmp.path("p.stl"), "--size", "uniform", "--h", "1", "--metric", tmp.path("f.vtp"), "-o",
+                 tmp.path("x.vtp")}).code, 2);
+  ASSERT_EQ(run({"synth", "sphere", "--radius", "40", "-o", tmp.path("s.stl")}).code, 0);
+  const RunResult other = run({"remesh", tmp.path("s.stl"), "--metric", tmp.path("f.vtp"), "-o", tmp.path("x.vtp")});
+  EXPECT_EQ(other.code, 2);
+  EXPECT_NE(last_line(other.err).find("another surface"), std::string::npos) << other.err;
+  EXPECT_EQ(tmp.files(), (std::vector<std::string>{"f.mesh", "f.sol", "f.vtp", "m.mesh", "p.stl", "r.vtp", "s.stl"}));
+}
+
 TEST(Cli, DemoWritesItsOutputs) {
   test::TemporaryFolder tmp;
   const RunResult r = run({"demo", "-o", tmp.path("demo"), "--json"});
@@ -290,6 +325,12 @@ TEST(Cli, DemoWritesItsOutputs) {
   EXPECT_TRUE(std::filesystem::exists(tmp.path("demo/curvature.vtp")));
   EXPECT_TRUE(std::filesystem::exists(tmp.path("demo/centerlines.vtp")));
   EXPECT_TRUE(std::filesystem::exists(tmp.path("demo/distance_map.vtp")));
+  // The paper's four surface meshes, of equal size.
+  for (const char* kind : {"uniform", "distance", "curvature", "anisotropic"}) {
+    EXPECT_NEAR(j["surface_meshes"][kind]["triangles"].get<double>(), 8000.0, 240.0) << kind;
+    EXPECT_LE(j["surface_meshes"][kind]["hausdorff_relative"].get<double>(), 0.02 + 1e-9) << kind;
+    EXPECT_TRUE(std::filesystem::exists(tmp.path(std::string("demo/surface_") + kind + ".vtp"))) << kind;
+  }
 }
 
 struct VesselInfo {

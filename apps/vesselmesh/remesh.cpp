@@ -1,0 +1,208 @@
+// vesselmesh remesh: the surface adapted to a size field (remesh/adapt.h).
+#include "commands.h"
+
+#include "io/surface.h"
+#include "mesh/error.h"
+#include "mesh/geometry.h"
+#include "remesh/adapt.h"
+#include "sizing/metric.h"
+
+#include <Eigen/Eigenvalues>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace vesselmesh::cli {
+namespace {
+
+// The metric stored in FIELD.vtp (`vesselmesh size` writes one): point data `metric` (6
+// components) or `size` (mm, isotropic). A field on the same points is taken as it is; one on
+// another surface is carried over by projecting each point onto it (log-Euclidean
+// interpolation inside its triangles).
+std::vector<Sym3> read_metric(const std::string& path, const TriMesh& surface) {
+  const io::SurfaceFile file = io::read_surface(path);
+  std::vector<Sym3> metric(file.mesh.points.size());
+  const Field* tensor = nullptr;
+  const Field* size = nullptr;
+  for (const Field& f : file.point_data) {
+    if (f.name == "metric" && f.components == 6) tensor = &f;
+    if (f.name == "size" && f.components == 1) size = &f;
+  }
+  if (!tensor && !size)
+    throw InputError(fmt::format("{}: no point data 'metric' (6 components: xx, xy, xz, yy, yz, zz) nor 'size' (mm); "
+                                 "write the field with 'vesselmesh size'",
+                                 path));
+  for (size_t v = 0; v < metric.size(); ++v) {
+    if (tensor) {
+      std::copy_n(tensor->values.begin() + 6 * v, 6, metric[v].v.begin());
+    } else {
+      const double h = size->values[v];
+      metric[v] = Sym3{{1.0 / (h * h), 0.0, 0.0, 1.0 / (h * h), 0.0, 1.0 / (h * h)}};
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(metric[v].matrix());
+    if (!metric[v].matrix().allFinite() || eigen.eigenvalues().minCoeff() <= 0.0)
+      throw InputError(fmt::format("{}: point {}: the metric is not symmetric positive definite (eigenvalues {:.4g}, "
+                                   "{:.4g}, {:.4g})",
+                                   path, v, eigen.eigenvalues()[0], eigen.eigenvalues()[1], eigen.eigenvalues()[2]));
+  }
+  if (file.mesh.points == surface.points) return metric;
+  remesh::SurfaceModel field(file.mesh, metric, remesh::FeatureOptions{});
+  std::vector<Sym3> out(surface.points.size());
+  double farthest = 0.0;
+  for (size_t v = 0; v < out.size(); ++v) {
+    const remesh::Projection p = field.project(surface.points[v]);
+    farthest = std::max(farthest, (p.point - surface.points[v]).norm());
+    out[v] = p.metric;
+  }
+  const auto box = mesh::bounding_box(surface.points);
+  if (farthest > 0.01 * (box[1] - box[0]).norm())
+    throw InputError(fmt::format("{}: the field's surface lies up to {:.3g} mm from the surface to remesh: it belongs to "
+                                 "another surface (or another unit)",
+                                 path, farthest));
+  return out;
+}
+
+}  // namespace
+
+Json remesh_json(const remesh::RemeshStats& s) {
+  return {{"points", s.points},
+          {"triangles", s.triangles},
+          {"edges_in_unit_range", round_to(s.edges_in_unit_range, 4)},
+          {"min_angle_deg", round_to(s.min_angle_deg, 4)},
+          {"mean_quality", round_to(s.mean_quality, 4)},
+          {"min_quality", round_to(s.min_quality, 4)},
+          {"hausdorff", round_to(s.hausdorff, 4)},
+          {"hausdorff_relative", s.hausdorff_relative >= 0.0 ? Json(round_to(s.hausdorff_relative, 4)) : Json(nullptr)},
+          {"seconds", round_to(s.seconds, 4)},
+          {"operations",
+           {{"splits", s.splits},
+            {"collapses", s.collapses},
+            {"flips", s.flips},
+            {"moves", s.moves},
+            {"distance_refinements", s.refinements}}}};
+}
+
+void write_remeshed(const std::string& path, const remesh::RemeshResult& result) {
+  std::vector<double> quality(result.mesh.num_triangles());
+  for (int t = 0; t < result.mesh.num_triangles(); ++t) {
+    const Triangle& f = result.mesh.triangles[t];
+    quality[t] = sizing::triangle_quality(result.mesh.points[f[0]], result.mesh.points[f[1]], result.mesh.points[f[2]],
+                                          result.metric[f[0]], result.metric[f[1]], result.metric[f[2]]);
+  }
+  Field metric_field{.name = "metric", .components = 6, .values = {}};
+  for (const Sym3& m : result.metric) metric_field.values.insert(metric_field.values.end(), m.v.begin(), m.v.end());
+  io::write_surface(path, result.mesh, {metric_field}, {Field::scalar("quality", quality)});
+}
+
+Command add_remesh_command(CLI::App& parent) {
+  CLI::App* app = parent.add_subcommand(
+      "remesh",
+      "Adapts the surface to a size field by local operations in the metric (split, collapse, flip, move; as MMG's "
+      "mmgs): edges of unit metric length, well-shaped triangles, every point on the input. Open ends, creases and label "
+      "borders are kept as feature lines; labels follow their triangles. The distance from the input stays below "
+      "--hausdorff (mm) and --hausdorff-relative times the local vessel radius");
+  struct Options {
+    std::string input, output, units, metric;
+    SizingArgs sizing;
+    remesh::RemeshOptions remesh;
+    std::string label_array;
+    CommonOptions common;
+  };
+  auto o = std::make_shared<Options>();
+  app->add_option("SURFACE", o->input, "Surface file: .stl, .vtp, .vtu, .ply, .obj, .msh, .mesh")->required();
+  app->add_option("-o,--output", o->output, "Output surface: .stl, .vtp (with point data metric, cell data tag and "
+                                            "quality), .msh or .mesh (Medit)")
+      ->required();
+  app->add_option("--units", o->units, "Length unit of the file: um, mm, cm or m (default mm)");
+  app->add_option("--label-array", o->label_array,
+                  "Integer cell array holding face labels (default: ModelFaceID, tag, CellEntityIds, gmsh:physical)");
+  add_sizing_options(*app, o->sizing, false);
+  app->add_option("--metric", o->metric,
+                  "Size field to adapt to instead of --size: a .vtp with point data metric or size, as 'vesselmesh size' "
+                  "writes it");
+  app->add_option("--hausdorff", o->remesh.hausdorff, "Largest distance of an output triangle from the input (mm; 0: none)")
+      ->check(CLI::NonNegativeNumber);
+  app->add_option("--hausdorff-relative", o->remesh.hausdorff_relative,
+                  "Largest distance from the input over the local radius (the distance map's, else 1/max|k|; 0: none)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app->add_option("--feature-angle", o->remesh.features.feature_angle_deg,
+                  "Dihedral angle (degrees) above which an edge is a crease kept as a feature line")
+      ->check(CLI::Range(0.0, 180.0))
+      ->capture_default_str();
+  app->add_option("--max-iterations", o->remesh.max_iterations, "Passes of split, collapse, flip and move")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  add_common_options(*app, o->common);
+  return {app, [o] {
+            const io::SurfaceFormat format = io::surface_format(o->output);
+            if (format != io::SurfaceFormat::stl && format != io::SurfaceFormat::vtp && format != io::SurfaceFormat::msh &&
+                format != io::SurfaceFormat::medit)
+              throw OptionError(fmt::format("{}: the remeshed surface is written as .stl, .vtp, .msh or .mesh", o->output));
+            if (o->metric.empty() == o->sizing.kind.empty())
+              throw OptionError("give the size field either by --size KIND (with sizing options) or by --metric FIELD.vtp");
+            TerminalReporter reporter(o->common.quiet);
+            SurfaceCheckOptions check;
+            if (!o->units.empty()) check.units = o->units;
+            check.label_array = o->label_array;
+            check.clean.find_self_intersections = false;
+            const CheckedSurface surface = check_surface(o->input, check, reporter);
+            const TriMesh& input = surface.file.mesh;
+            const auto start = std::chrono::steady_clock::now();
+
+            std::vector<Sym3> metric;
+            std::optional<SizedSurface> sized;
+            if (o->metric.empty()) {
+              sized = size_surface(surface, o->sizing, reporter);
+              metric = sized->field.metric;
+            } else {
+              metric = read_metric(o->metric, input);
+            }
+            // The local radius for the relative distance bound: the distance map's, when the
+            // surface has ends to trace centerlines between.
+            std::optional<centerline::DistanceMap> distance;
+            if (sized && sized->distance) {
+              distance = sized->distance;
+            } else if (!sized && o->remesh.hausdorff_relative > 0.0) {
+              try {
+                distance = centerline::distance_map(input, centerline::extract(input, {}, reporter));
+              } catch (const InputError& e) {
+                reporter.warning(fmt::format("no centerlines ({}); the local radius comes from the curvature", e.what()));
+              }
+            }
+            remesh::RemeshOptions options = o->remesh;
+            if (distance) options.input_radius = &distance->radius;
+            const double target = o->sizing.options.target_triangles;
+            const remesh::RemeshResult result = target > 0.0 ? remesh::adapt_to_count(input, metric, target, options, reporter)
+                                                             : remesh::adapt(input, metric, options, reporter);
+            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const remesh::RemeshStats& s = result.stats;
+
+            write_remeshed(o->output, result);
+
+            if (o->common.json) {
+              Json json = remesh_json(s);
+              json["input"] = o->input;
+              json["output"] = o->output;
+              json["units"] = "mm";
+              json["size"] = sized ? Json(sizing::size_kind_name(sized->field.kind)) : Json("metric file");
+              if (target > 0.0) json["target_triangles"] = std::lround(target);
+              json["seconds"] = round_to(seconds, 4);
+              print_json(json);
+            } else {
+              reporter.info(fmt::format(
+                  "{} points, {} triangles; edges of unit metric length {:.1f} %, smallest angle {:.1f} deg, quality mean "
+                  "{:.3f} worst {:.3f}; Hausdorff distance {:.4g} mm{}; {:.1f} s; wrote {}",
+                  s.points, s.triangles, 100.0 * s.edges_in_unit_range, s.min_angle_deg, s.mean_quality, s.min_quality,
+                  s.hausdorff,
+                  s.hausdorff_relative >= 0.0 ? fmt::format(" ({:.2f} % of the local radius)", 100.0 * s.hausdorff_relative)
+                                              : std::string(),
+                  seconds, o->output));
+            }
+            return 0;
+          }};
+}
+
+}  // namespace vesselmesh::cli

@@ -1,0 +1,603 @@
+#include "remesh/adapt.h"
+
+#include "mesh/connectivity.h"
+#include "mesh/error.h"
+#include "mesh/geometry.h"
+#include "remesh/dynamic_mesh.h"
+#include "sizing/metric.h"
+#include "sizing/size_field.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <limits>
+#include <optional>
+
+namespace vesselmesh::remesh {
+namespace {
+
+const double kLong = std::sqrt(2.0);
+const double kShort = 1.0 / std::sqrt(2.0);
+constexpr double kMinNormalCos = 0.5;  // 60 degrees from the input's normal
+const double kFlipBendCos = std::cos(20.0 * std::numbers::pi / 180.0);
+
+class Remesher {
+ public:
+  Remesher(SurfaceModel& model, const RemeshOptions& options, std::vector<double> bound)
+      : model_(model), m_(model), o_(options), bound_(std::move(bound)) {}
+
+  void run(const Reporter& reporter);
+  DynamicMesh& mesh() { return m_; }
+  RemeshStats counts;
+
+ private:
+  Vec3 face_normal(const Triangle& f) const {
+    return (m_.position[f[1]] - m_.position[f[0]]).cross(m_.position[f[2]] - m_.position[f[0]]);
+  }
+  Vec3 reference_normal(const Triangle& f, const Vec3& fallback) const;
+  bool valid(const Triangle& f, const Vec3& fallback) const;
+  double deviation(const Triangle& f) const;
+  // Within the distance bound, once the final refinement has enforced it (before, the metric
+  // keeps the mesh close, and checking every operation would slow them all).
+  bool close_enough(const Triangle& f) const { return !keep_bound_ || deviation(f) <= allowed_deviation(f); }
+  double worst_quality(const std::vector<int>& triangles) const;
+
+  bool split(int a, int b);
+  bool collapse(int a, int b);  // removes a
+  bool flip(int a, int b);
+  bool move(int v);
+  std::optional<Projection> move_target(int v) const;
+
+  std::vector<std::array<int, 2>> edges() const;
+  int split_pass();
+  int collapse_pass();
+  int flip_pass();
+  int move_pass();
+  double allowed_deviation(const Triangle& f) const;
+  void adapt_passes(const Reporter& reporter, double from, double to);
+  int tighten_metric();
+  void bound_hausdorff();
+
+  SurfaceModel& model_;
+  DynamicMesh m_;
+  const RemeshOptions& o_;
+  std::vector<double> bound_;  // per input point: the largest distance allowed there (inf: none)
+  bool keep_bound_ = false;
+};
+
+// The surface's normal where a triangle lies: the mean normal of its free points (each the
+// input's normal at the point's projection, on the right side of any crease). A triangle whose
+// points all lie on feature curves has no such normal: `fallback` (the normal of the triangle
+// it replaces) serves instead.
+Vec3 Remesher::reference_normal(const Triangle& f, const Vec3& fallback) const {
+  Vec3 n = Vec3::Zero();
+  for (int v : f)
+    if (m_.kind[v] == PointKind::free) n += m_.normal[v];
+  if (n.squaredNorm() > 0.0) return n.normalized();
+  return fallback.squaredNorm() > 0.0 ? Vec3(fallback.normalized()) : Vec3::Zero();
+}
+
+bool Remesher::valid(const Triangle& f, const Vec3& fallback) const {
+  const Vec3 n = face_normal(f);
+  const double longest = std::max({(m_.position[f[1]] - m_.position[f[0]]).squaredNorm(),
+                                   (m_.position[f[2]] - m_.position[f[1]]).squaredNorm(),
+                                   (m_.position[f[0]] - m_.position[f[2]]).squaredNorm()});
+  const double length = n.norm();
+  if (!(length > 1e-8 * longest)) return false;  // degenerate
+  const Vec3 reference = reference_normal(f, fallback);
+  return reference.squaredNorm() == 0.0 || n.dot(reference) > kMinNormalCos * length;
+}
+
+// Largest distance from the input of the centroid and edge midpoints (the corners are on it).
+double Remesher::deviation(const Triangle& f) const {
+  const Vec3 &a = m_.position[f[0]], &b = m_.position[f[1]], &c = m_.position[f[2]];
+  double d = model_.distance((a + b + c) / 3.0);
+  for (const Vec3& p : {Vec3(0.5 * (a + b)), Vec3(0.5 * (b + c)), Vec3(0.5 * (c + a))}) d = std::max(d, model_.distance(p));
+  return d;
+}
+
+double Remesher::worst_quality(const std::vector<int>& triangles) const {
+  double worst = 1.0;
+  for (int t : triangles) worst = std::min(worst, m_.quality(m_.triangles[t]));
+  return worst;
+}
+
+bool Remesher::split(int a, int b) {
+  const std::vector<int> shared = m_.triangles_of_edge(a, b);
+  if (shared.empty()) return false;
+  const int c = m_.curve_of_edge(a, b);
+  const Vec3 middle = 0.5 * (m_.position[a] + m_.position[b]);
+  const Projection p = c >= 0 ? model_.project_on_curve(c, middle) : model_.project(middle);
+  const Vec3 normal = c >= 0 ? Vec3(m_.normal[a] + m_.normal[b]) : p.normal;
+  const int n = m_.add_point(p.point, p.metric, normal.norm() > 0 ? Vec3(normal.normalized()) : normal,
+                             c >= 0 ? PointKind::curve : PointKind::free, c);
+  std::vector<std::pair<Triangle, int>> created;
+  for (int t : shared) {
+    const Triangle f = m_.triangles[t];
+    Triangle f1 = f, f2 = f;
+    f1[mesh::corner_of(f, b)] = n;
+    f2[mesh::corner_of(f, a)] = n;
+    const Vec3 before = face_normal(f);
+    if (!valid(f1, before) || !valid(f2, before)) {
+      m_.point_alive[n] = 0;  // an orphan, dropped at the end
+      return false;
+    }
+    created.push_back({f1, m_.labels[t]});
+    created.push_back({f2, m_.labels[t]});
+  }
+  for (int t : shared) m_.kill_triangle(t);
+  for (const auto& [f, label] : created) m_.add_triangle(f, label);
+  if (c >= 0) {
+    m_.set_curve_edge(a, b, -1);
+    m_.set_curve_edge(a, n, c);
+    m_.set_curve_edge(n, b, c);
+  }
+  ++counts.splits;
+  return true;
+}
+
+bool Remesher::collapse(int a, int b) {
+  if (m_.kind[a] == PointKind::corner) return false;
+  const int c = m_.curve_of_edge(a, b);
+  if (m_.kind[a] == PointKind::curve && c < 0) return false;  // curve points move along their curve only
+  const std::vector<int> shared = m_.triangles_of_edge(a, b);
+  if (shared.empty()) return false;
+  // Topology: the common neighbours of a and b must be exactly the far corners of their
+  // shared triangles (the link condition).
+  const std::vector<int> na = m_.neighbours(a), nb = m_.neighbours(b);
+  std::vector<int> common, opposite;
+  std::set_intersection(na.begin(), na.end(), nb.begin(), nb.end(), std::back_inserter(common));
+  for (int t : shared)
+    for (int v : m_.triangles[t])
+      if (v != a && v != b) opposite.push_back(v);
+  std::sort(opposite.begin(), opposite.end());
+  if (common != opposite) return false;
+  // The triangles around a, with b in its place, must stay valid and not too bad.
+  const std::vector<int> around = m_.ball[a];
+  const double floor = std::min(0.3, worst_quality(around));
+  for (int t : around) {
+    if (std::find(shared.begin(), shared.end(), t) != shared.end()) continue;
+    Triangle f = m_.triangles[t];
+    const Vec3 before = face_normal(f);
+    f[mesh::corner_of(f, a)] = b;
+    if (!valid(f, before)) return false;
+    if (m_.quality(f) < floor) return false;
+    if (!close_enough(f)) return false;
+  }
+  for (int x : na)
+    if (x != b && m_.edge_length(b, x) > 1.8 && m_.edge_length(a, x) <= 1.8) return false;
+  // Apply.
+  for (int t : shared) m_.kill_triangle(t);
+  const std::vector<int> rest = m_.ball[a];
+  for (int t : rest) m_.set_corner(t, mesh::corner_of(m_.triangles[t], a), b);
+  for (int x : na) {
+    const int cx = m_.curve_of_edge(a, x);
+    if (cx < 0) continue;
+    m_.set_curve_edge(a, x, -1);
+    if (x != b) m_.set_curve_edge(b, x, cx);
+  }
+  m_.point_alive[a] = 0;
+  ++counts.collapses;
+  return true;
+}
+
+bool Remesher::flip(int a, int b) {
+  if (m_.curve_of_edge(a, b) >= 0) return false;
+  const std::vector<int> shared = m_.triangles_of_edge(a, b);
+  if (shared.size() != 2) return false;
+  int t1 = shared[0], t2 = shared[1];
+  if (m_.triangles[t1][(mesh::corner_of(m_.triangles[t1], a) + 1) % 3] != b) std::swap(t1, t2);  // t1 runs a -> b
+  const Triangle f1 = m_.triangles[t1], f2 = m_.triangles[t2];
+  const int c = f1[(mesh::corner_of(f1, a) + 2) % 3], d = f2[(mesh::corner_of(f2, b) + 2) % 3];
+  if (c == d || m_.connected(c, d)) return false;
+  const Triangle g1{a, d, c}, g2{d, b, c};
+  const double before = std::min(m_.quality(f1), m_.quality(f2));
+  const double after = std::min(m_.quality(g1), m_.quality(g2));
+  if (!(after > 1.02 * before + 1e-6)) return false;
+  const Vec3 pair = face_normal(f1).normalized() + face_normal(f2).normalized();
+  if (!valid(g1, pair) || !valid(g2, pair)) return false;
+  // Do not fold the surface: the new pair may bend no more than the old one or 20 degrees.
+  const Vec3 n1 = face_normal(f1).normalized(), n2 = face_normal(f2).normalized();
+  const Vec3 m1 = face_normal(g1).normalized(), m2 = face_normal(g2).normalized();
+  if (m1.dot(m2) < std::min(n1.dot(n2), kFlipBendCos)) return false;
+  if (!close_enough(g1) || !close_enough(g2)) return false;
+  const int l1 = m_.labels[t1], l2 = m_.labels[t2];
+  m_.kill_triangle(t1);
+  m_.kill_triangle(t2);
+  m_.add_triangle(g1, l1);
+  m_.add_triangle(g2, l2);
+  ++counts.flips;
+  return true;
+}
+
+// Where a point would like to be: for a free point, the mean of the ideal apexes of its
+// triangles (the apex that makes each an equilateral triangle of the metric over its far
+// edge), in its tangent plane; for a curve point, halfway to the middle of its two curve
+// neighbours. Then back onto the input.
+std::optional<Projection> Remesher::move_target(int v) const {
+  const Vec3& p = m_.position[v];
+  if (m_.kind[v] == PointKind::curve) {
+    std::vector<int> along;
+    for (int x : m_.neighbours(v))
+      if (m_.curve_of_edge(v, x) >= 0) along.push_back(x);
+    if (along.size() != 2) return std::nullopt;
+    const Vec3 target = 0.5 * p + 0.25 * (m_.position[along[0]] + m_.position[along[1]]);
+    return model_.project_on_curve(m_.curve[v], target);
+  }
+  Vec3 sum = Vec3::Zero();
+  int count = 0;
+  for (int t : m_.ball[v]) {
+    const Triangle& f = m_.triangles[t];
+    const int i = mesh::corner_of(f, v);
+    const int x = f[(i + 1) % 3], y = f[(i + 2) % 3];
+    Sym3 m;
+    for (int k = 0; k < 6; ++k) m.v[k] = (m_.metric[x].v[k] + m_.metric[y].v[k] + m_.metric[v].v[k]) / 3.0;
+    const Vec3 e = m_.position[y] - m_.position[x];
+    const Vec3 n = face_normal(f);
+    if (n.squaredNorm() == 0.0) continue;
+    // In the plane, perpendicular to e in the metric, pointing to v's side.
+    Vec3 w = n.cross(e);
+    w -= (m.form(w, e) / m.form(e, e)) * e;
+    const double lw = sizing::metric_length(m, w), le = sizing::metric_length(m, e);
+    if (!(lw > 0.0)) continue;
+    sum += 0.5 * (m_.position[x] + m_.position[y]) + (0.5 * std::sqrt(3.0) * le / lw) * w;
+    ++count;
+  }
+  if (count == 0) return std::nullopt;
+  Vec3 target = p + 0.5 * (sum / count - p);
+  const Vec3& n = m_.normal[v];
+  target -= (target - p).dot(n) * n;
+  return model_.project(target);
+}
+
+bool Remesher::move(int v) {
+  if (m_.kind[v] == PointKind::corner || m_.ball[v].empty()) return false;
+  const std::optional<Projection> target = move_target(v);
+  if (!target) return false;
+  const std::vector<int>& around = m_.ball[v];
+  const double before = worst_quality(around);
+  std::vector<Vec3> old_normals;
+  for (int t : around) old_normals.push_back(face_normal(m_.triangles[t]));
+  const Vec3 old_position = m_.position[v], old_normal = m_.normal[v];
+  const Sym3 old_metric = m_.metric[v];
+  m_.position[v] = target->point;
+  m_.metric[v] = target->metric;
+  if (m_.kind[v] == PointKind::free) m_.normal[v] = target->normal;
+  bool keep = worst_quality(around) > before + 1e-6;
+  for (size_t i = 0; i < around.size() && keep; ++i)
+    keep = valid(m_.triangles[around[i]], old_normals[i]) && close_enough(m_.triangles[around[i]]);
+  if (!keep) {
+    m_.position[v] = old_position;
+    m_.metric[v] = old_metric;
+    m_.normal[v] = old_normal;
+    return false;
+  }
+  ++counts.moves;
+  return true;
+}
+
+std::vector<std::array<int, 2>> Remesher::edges() const {
+  std::vector<std::array<int, 2>> out;
+  for (size_t t = 0; t < m_.triangles.size(); ++t) {
+    if (!m_.triangle_alive[t]) continue;
+    const Triangle& f = m_.triangles[t];
+    for (int i = 0; i < 3; ++i) out.push_back({std::min(f[i], f[(i + 1) % 3]), std::max(f[i], f[(i + 1) % 3])});
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+int Remesher::split_pass() {
+  std::vector<std::pair<double, std::array<int, 2>>> todo;
+  for (const auto& e : edges()) {
+    const double l = m_.edge_length(e[0], e[1]);
+    if (l > kLong) todo.push_back({-l, e});
+  }
+  std::sort(todo.begin(), todo.end());
+  int done = 0;
+  for (const auto& [minus_length, e] : todo)
+    if (m_.connected(e[0], e[1]) && m_.edge_length(e[0], e[1]) > kLong) done += split(e[0], e[1]);
+  return done;
+}
+
+int Remesher::collapse_pass() {
+  std::vector<std::pair<double, std::array<int, 2>>> todo;
+  for (const auto& e : edges()) {
+    const double l = m_.edge_length(e[0], e[1]);
+    if (l < kShort) todo.push_back({l, e});
+  }
+  std::sort(todo.begin(), todo.end());
+  int done = 0;
+  for (const auto& [length, e] : todo) {
+    const auto [a, b] = e;
+    if (!m_.point_alive[a] || !m_.point_alive[b] || !m_.connected(a, b) || m_.edge_length(a, b) >= kShort) continue;
+    // Remove the freer point first: a curve point stays rather than a free one moving onto it.
+    const bool a_first = static_cast<int>(m_.kind[a]) <= static_cast<int>(m_.kind[b]);
+    done += a_first ? (collapse(a, b) || collapse(b, a)) : (collapse(b, a) || collapse(a, b));
+  }
+  return done;
+}
+
+int Remesher::flip_pass() {
+  int done = 0;
+  for (const auto& [a, b] : edges())
+    if (m_.connected(a, b)) done += flip(a, b);
+  return done;
+}
+
+int Remesher::move_pass() {
+  int done = 0;
+  for (int v = 0; v < static_cast<int>(m_.position.size()); ++v)
+    if (m_.point_alive[v]) done += move(v);
+  return done;
+}
+
+// The largest distance a triangle may keep from the input: the bound at the input triangle
+// nearest its centroid.
+double Remesher::allowed_deviation(const Triangle& f) const {
+  const Projection p = model_.project((m_.position[f[0]] + m_.position[f[1]] + m_.position[f[2]]) / 3.0);
+  const Triangle& g = model_.input().triangles[p.triangle];
+  return std::min({bound_[g[0]], bound_[g[1]], bound_[g[2]]});
+}
+
+// Splits the longest edge of every triangle farther from the input than allowed.
+void Remesher::bound_hausdorff() {
+  for (int round = 0; round < 10; ++round) {
+    std::vector<std::array<int, 2>> todo;
+    for (size_t t = 0; t < m_.triangles.size(); ++t) {
+      if (!m_.triangle_alive[t] || deviation(m_.triangles[t]) <= allowed_deviation(m_.triangles[t])) continue;
+      const Triangle& f = m_.triangles[t];
+      int best = 0;
+      for (int i = 1; i < 3; ++i)
+        if ((m_.position[f[(i + 1) % 3]] - m_.position[f[i]]).squaredNorm() >
+            (m_.position[f[(best + 1) % 3]] - m_.position[f[best]]).squaredNorm())
+          best = i;
+      todo.push_back({std::min(f[best], f[(best + 1) % 3]), std::max(f[best], f[(best + 1) % 3])});
+    }
+    std::sort(todo.begin(), todo.end());
+    todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+    if (todo.empty()) return;
+    for (const auto& [a, b] : todo)
+      if (m_.connected(a, b)) counts.refinements += split(a, b);
+    flip_pass();
+  }
+}
+
+// Passes of split / collapse / flip / move until splits and collapses stop.
+void Remesher::adapt_passes(const Reporter& reporter, double from, double to) {
+  for (int it = 0; it < o_.max_iterations; ++it) {
+    const int splits = split_pass();
+    const int collapses = collapse_pass();
+    flip_pass();
+    move_pass();
+    reporter.progress("remeshing", from + (to - from) * (it + 1) / o_.max_iterations);
+    if (splits + collapses == 0) break;
+  }
+}
+
+// Where a triangle strays further from the input than half its bound allows (what the
+// metric aimed at), the metric of the input points under it grows by the ratio (sizes shrink
+// by its square root; a sagitta goes as the size squared), fourfold at most per round; then
+// every point takes the metric anew. Returns the number of such triangles.
+int Remesher::tighten_metric() {
+  std::vector<double> factor(model_.input().points.size(), 1.0);
+  int count = 0;
+  for (size_t t = 0; t < m_.triangles.size(); ++t) {
+    if (!m_.triangle_alive[t]) continue;
+    const Triangle& f = m_.triangles[t];
+    const double allowed = allowed_deviation(f);
+    const double d = deviation(f);
+    if (!(d > allowed)) continue;
+    ++count;
+    const double grow = std::min(4.0, d / (0.5 * allowed));
+    const Vec3 &a = m_.position[f[0]], &b = m_.position[f[1]], &c = m_.position[f[2]];
+    for (const Vec3& p : {a, b, c, Vec3((a + b + c) / 3.0), Vec3(0.5 * (a + b)), Vec3(0.5 * (b + c)), Vec3(0.5 * (c + a))})
+      for (int v : model_.input().triangles[model_.project(p).triangle]) factor[v] = std::max(factor[v], grow);
+  }
+  if (count == 0) return 0;
+  for (size_t v = 0; v < factor.size(); ++v)
+    if (factor[v] > 1.0) model_.refine_metric(static_cast<int>(v), factor[v]);
+  for (size_t v = 0; v < m_.position.size(); ++v) {
+    if (!m_.point_alive[v]) continue;
+    switch (m_.kind[v]) {
+      case PointKind::corner: m_.metric[v] = model_.metric(static_cast<int>(v)); break;  // corners are input points
+      case PointKind::curve: m_.metric[v] = model_.project_on_curve(m_.curve[v], m_.position[v]).metric; break;
+      case PointKind::free: m_.metric[v] = model_.project(m_.position[v]).metric; break;
+    }
+  }
+  return count;
+}
+
+void Remesher::run(const Reporter& reporter) {
+  reporter.progress("remeshing", 0.0);
+  adapt_passes(reporter, 0.0, 0.5);
+  const bool bounded = std::any_of(bound_.begin(), bound_.end(), [](double b) { return std::isfinite(b); });
+  for (int round = 0; bounded && round < 3; ++round) {
+    const int far = tighten_metric();
+    counts.tightened += far;
+    if (far == 0) break;
+    adapt_passes(reporter, 0.5 + 0.1 * round, 0.6 + 0.1 * round);
+  }
+  for (int it = 0; it < 3; ++it) {
+    flip_pass();
+    move_pass();
+  }
+  if (bounded) {
+    bound_hausdorff();
+    keep_bound_ = true;
+    for (int it = 0; it < 2; ++it) {  // mend the shapes the refinement made, within the bound
+      flip_pass();
+      move_pass();
+    }
+  }
+  reporter.progress("remeshing", 1.0);
+}
+
+}  // namespace
+
+RemeshStats measure(const TriMesh& mesh, const std::vector<Sym3>& metric, const SurfaceModel& model,
+                    const std::vector<double>* input_radius) {
+  VM_CHECK(metric.size() == mesh.points.size(), "one metric per point");
+  RemeshStats s;
+  s.points = mesh.num_points();
+  s.triangles = mesh.num_triangles();
+  const mesh::EdgeMap edges = mesh::build_edge_map(mesh);
+  int in_range = 0;
+  for (int e = 0; e < edges.num_edges(); ++e) {
+    const auto [a, b] = edges.edges[e];
+    const double l = sizing::edge_length(mesh.points[a], mesh.points[b], metric[a], metric[b]);
+    in_range += l >= kShort && l <= kLong;
+  }
+  s.edges_in_unit_range = edges.num_edges() ? static_cast<double>(in_range) / edges.num_edges() : 0.0;
+  s.min_angle_deg = 180.0;
+  s.min_quality = 1.0;
+  double quality_sum = 0.0;
+  const TriMesh& in = model.input();
+  for (int t = 0; t < mesh.num_triangles(); ++t) {
+    const Triangle& f = mesh.triangles[t];
+    const auto angles = mesh::triangle_angles(mesh, t);
+    s.min_angle_deg = std::min(s.min_angle_deg, *std::min_element(angles.begin(), angles.end()) * 180.0 / std::numbers::pi);
+    const double q = sizing::triangle_quality(mesh.points[f[0]], mesh.points[f[1]], mesh.points[f[2]], metric[f[0]],
+                                              metric[f[1]], metric[f[2]]);
+    quality_sum += q;
+    s.min_quality = std::min(s.min_quality, q);
+    // Distance from the input: the centroid and the edge midpoints (the corners lie on it).
+    const Vec3 &a = mesh.points[f[0]], &b = mesh.points[f[1]], &c = mesh.points[f[2]];
+    double d = 0.0;
+    for (const Vec3& p : {Vec3((a + b + c) / 3.0), Vec3(0.5 * (a + b)), Vec3(0.5 * (b + c)), Vec3(0.5 * (c + a))})
+      d = std::max(d, model.distance(p));
+    s.hausdorff = std::max(s.hausdorff, d);
+    if (input_radius) {
+      const Projection p = model.project((a + b + c) / 3.0);
+      const Triangle& g = in.triangles[p.triangle];
+      const double r = ((*input_radius)[g[0]] + (*input_radius)[g[1]] + (*input_radius)[g[2]]) / 3.0;
+      if (r > 0.0) s.hausdorff_relative = std::max(s.hausdorff_relative, d / r);
+    }
+  }
+  if (input_radius && s.hausdorff_relative < 0.0) s.hausdorff_relative = 0.0;
+  s.mean_quality = mesh.num_triangles() ? quality_sum / mesh.num_triangles() : 0.0;
+  return s;
+}
+
+namespace {
+
+// Per input point, the largest distance the output may keep from the input there (inf: none).
+// Without radii, the radius is 1 / max(|k1|, |k2|), but never below a quarter of its median
+// over the surface: a segmentation's bumps and a closed model's rounded ends curve far more
+// than the vessel, and bounding by them would refine every bump.
+std::vector<double> distance_bounds(const TriMesh& input, const RemeshOptions& o, const analysis::CurvatureField* c) {
+  std::vector<double> bound(input.points.size(), o.hausdorff > 0.0 ? o.hausdorff : std::numeric_limits<double>::infinity());
+  if (!(o.hausdorff_relative > 0.0)) return bound;
+  std::vector<double> radius(input.points.size(), 0.0);
+  if (o.input_radius) {
+    radius = *o.input_radius;
+  } else {
+    for (int v = 0; v < input.num_points(); ++v) {
+      const double k = std::max(std::abs(c->k1[v]), std::abs(c->k2[v]));
+      radius[v] = k > 0.0 ? 1.0 / k : std::numeric_limits<double>::infinity();
+    }
+    std::vector<double> sorted = radius;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double floor = 0.25 * sorted[sorted.size() / 2];
+    for (double& r : radius) r = std::max(r, floor);
+  }
+  for (int v = 0; v < input.num_points(); ++v)
+    if (radius[v] > 0.0 && std::isfinite(radius[v])) bound[v] = std::min(bound[v], o.hausdorff_relative * radius[v]);
+  return bound;
+}
+
+// M intersected with the chord bound for half the distance bound (edges up to sqrt 2 long then
+// stray at most the bound),
+// refining tenfold at most; `changed` counts the points where that made M finer.
+std::vector<Sym3> bounded_metrics(const std::vector<Sym3>& metrics, const std::vector<double>& bound,
+                                  const analysis::CurvatureField& c, int& changed) {
+  std::vector<Sym3> out = metrics;
+  changed = 0;
+  for (size_t v = 0; v < metrics.size(); ++v) {
+    if (!std::isfinite(bound[v])) continue;
+    Vec3 sizes;
+    Eigen::Matrix3d directions;
+    sizing::metric_sizes(metrics[v], sizes, directions);
+    const bool anisotropic = sizes.maxCoeff() > 1.05 * sizes.minCoeff();
+    const Sym3 g = sizing::clamp_sizes(sizing::chord_metric(c, static_cast<int>(v), 0.5 * bound[v], anisotropic),
+                                       0.1 * sizes.minCoeff(), std::numeric_limits<double>::infinity());
+    out[v] = sizing::intersect(metrics[v], g);
+    changed += out[v].matrix().trace() > 1.01 * metrics[v].matrix().trace();
+  }
+  return out;
+}
+
+}  // namespace
+
+RemeshResult adapt(const TriMesh& input, const std::vector<Sym3>& metrics, const RemeshOptions& options,
+                   const Reporter& reporter) {
+  if (metrics.size() != input.points.size())
+    throw InputError(fmt::format("the metric field has {} values for {} points: it does not belong to this surface",
+                                 metrics.size(), input.points.size()));
+  if (options.hausdorff < 0.0) throw OptionError("the Hausdorff bound must not be negative");
+  if (options.hausdorff_relative < 0.0) throw OptionError("the relative Hausdorff bound must not be negative");
+  if (options.input_radius && options.input_radius->size() != input.points.size())
+    throw InternalError("the radii do not belong to this surface");
+  if (options.curvature && options.curvature->size() != input.num_points())
+    throw InternalError("the curvature does not belong to this surface");
+  const auto start = std::chrono::steady_clock::now();
+  analysis::Features features = analysis::detect_features(input, options.features);
+  const bool bounded = options.hausdorff > 0.0 || options.hausdorff_relative > 0.0;
+  std::optional<analysis::CurvatureField> own;
+  const analysis::CurvatureField* curvature = options.curvature;
+  if (!curvature && bounded && (options.geometric_metric || !options.input_radius)) {
+    own = analysis::patch_curvature(input, features);
+    curvature = &*own;
+  }
+  const std::vector<double> bound = distance_bounds(input, options, curvature);
+  int geometric_points = 0;
+  SurfaceModel model(input,
+                           options.geometric_metric && bounded ? bounded_metrics(metrics, bound, *curvature, geometric_points)
+                                                               : metrics,
+                           std::move(features));
+  Remesher remesher(model, options, bound);
+  remesher.run(reporter);
+  RemeshResult result;
+  result.mesh = remesher.mesh().to_trimesh(&result.metric);
+  result.stats = measure(result.mesh, result.metric, model, options.input_radius);
+  result.stats.splits = remesher.counts.splits;
+  result.stats.collapses = remesher.counts.collapses;
+  result.stats.flips = remesher.counts.flips;
+  result.stats.moves = remesher.counts.moves;
+  result.stats.refinements = remesher.counts.refinements;
+  result.stats.geometric_points = geometric_points;
+  result.stats.tightened = remesher.counts.tightened;
+  result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+RemeshResult adapt_to_count(const TriMesh& input, const std::vector<Sym3>& metrics, double target_triangles,
+                            const RemeshOptions& options, const Reporter& reporter, double tolerance,
+                            int max_corrections) {
+  if (!(target_triangles > 0.0)) throw OptionError("the target triangle count must be positive");
+  RemeshResult result = adapt(input, metrics, options, reporter);
+  std::vector<Sym3> scaled = metrics;
+  double seconds = result.stats.seconds;
+  int last = result.stats.triangles;  // what the metric as scaled now gave
+  for (int round = 0; round < max_corrections; ++round) {
+    if (std::abs(result.stats.triangles / target_triangles - 1.0) <= tolerance) break;
+    const double ratio = target_triangles / std::max(1, last);
+    reporter.info(fmt::format("{} triangles for a target of {:.0f}: scaling the metric by {:.3f} and remeshing", last,
+                              target_triangles, ratio));
+    for (Sym3& m : scaled)
+      for (double& x : m.v) x *= ratio;
+    RemeshResult next = adapt(input, scaled, options, reporter);
+    seconds += next.stats.seconds;
+    last = next.stats.triangles;
+    const bool closer = std::abs(next.stats.triangles - target_triangles) < std::abs(result.stats.triangles - target_triangles);
+    if (closer) result = std::move(next);
+  }
+  result.stats.seconds = seconds;
+  return result;
+}
+
+}  // namespace vesselmesh::remesh

@@ -1,0 +1,90 @@
+// The surface remesher: adapts a surface to a metric field by local operations, as MMG's mmgs
+// and P. Frey, F. Alauzet, "Anisotropic mesh adaptation for CFD computations" (CMAME 2005).
+//
+// Input: a clean, manifold surface (mesh::clean) and an SPD metric per input point
+// (sizing/). Output: a surface whose edges have unit length in the metric, with well-shaped
+// triangles (quality measured in the metric), on the input surface.
+//
+// Passes of: splitting edges longer than sqrt 2 in the metric (the new point projected onto
+// the input), collapsing edges shorter than 1/sqrt 2 (when the topology stays the same and no
+// triangle gets worse than the worst it replaces or than 0.3), flipping edges where that
+// raises the smaller quality of the two triangles without bending the surface, and moving
+// points to the mean of their neighbours in their tangent plane (then back onto the input)
+// where that raises the worst quality of their ball. Until splits and collapses stop, then a
+// few more flips and moves.
+// Guarantees: every point lies on the input (closest point of the input triangles, AABB
+// tree); feature curves (open ends, creases above the feature angle, label borders) are
+// remeshed along themselves and their corners stay; labels follow their triangles; the
+// topology (components, boundary loops, genus) is kept; no triangle is created degenerate or
+// with its normal more than 60 degrees from the input's normal there. Deterministic.
+#pragma once
+
+#include "analysis/curvature.h"
+#include "mesh/reporter.h"
+#include "mesh/sym3.h"
+#include "mesh/trimesh.h"
+#include "remesh/surface_model.h"
+
+#include <vector>
+
+namespace vesselmesh::remesh {
+
+struct RemeshOptions {
+  FeatureOptions features;
+  int max_iterations = 15;        // passes of split / collapse / flip / move
+  // Distance bounds: no output triangle farther from the input than `hausdorff` (> 0) nor than
+  // `hausdorff_relative` (> 0) times the local radius: `input_radius` per input point (e.g. the
+  // distance map's radius; the figures then report the largest relative distance), or without
+  // it the radius of the tightest normal section, 1 / max(|k1|, |k2|).
+  double hausdorff = 0.0;
+  double hausdorff_relative = 0.02;
+  const std::vector<double>* input_radius = nullptr;
+  // The metric is first intersected with the chord bound for half the distance bound
+  // (sizing::chord_metric; isotropic where the metric is, else along the principal
+  // directions), never refining more than tenfold: the bound shapes the mesh, as in mmgs,
+  // instead of being enforced by splits at the end. The figures are against that metric.
+  bool geometric_metric = true;
+  // The input's curvature (per point, e.g. what sizing used); computed on each side of the
+  // creases when absent.
+  const analysis::CurvatureField* curvature = nullptr;
+};
+
+// Figures of an adapted surface against its metric (lengths and quality in the metric).
+struct RemeshStats {
+  int points = 0;
+  int triangles = 0;
+  double edges_in_unit_range = 0.0;  // fraction of edges of metric length in [1/sqrt 2, sqrt 2]
+  double min_angle_deg = 0.0;        // smallest Euclidean angle
+  double mean_quality = 0.0, min_quality = 0.0;
+  double hausdorff = 0.0;            // largest distance of an output triangle from the input
+  double hausdorff_relative = -1.0;  // largest such distance over the local radius (-1: unknown)
+  int splits = 0, collapses = 0, flips = 0, moves = 0;
+  int refinements = 0;               // splits made to meet the distance bounds at the end
+  int geometric_points = 0;          // input points whose metric the chord bound refined
+  int tightened = 0;                 // triangles too far from the input that refined the metric
+  double seconds = 0.0;
+};
+
+struct RemeshResult {
+  TriMesh mesh;
+  std::vector<Sym3> metric;  // per output point: what the mesh was adapted to
+  RemeshStats stats;
+};
+
+RemeshResult adapt(const TriMesh& input, const std::vector<Sym3>& metrics, const RemeshOptions& options = {},
+                   const Reporter& reporter = silent_reporter());
+
+// adapt(), then, while the triangle count is off `target_triangles` by more than `tolerance`
+// (relative), the metric scaled by target / count (the count goes as the metric's density)
+// and adapt() again, `max_corrections` times at most: the sizing issue's target count. The
+// distance bound's refinement does not scale, so a count it dominates may stay above target.
+RemeshResult adapt_to_count(const TriMesh& input, const std::vector<Sym3>& metrics, double target_triangles,
+                            const RemeshOptions& options = {}, const Reporter& reporter = silent_reporter(),
+                            double tolerance = 0.03, int max_corrections = 2);
+
+// The figures of `mesh` against per-point metrics, its distance from `model`'s input, and
+// (with radii) relative to the local radius.
+RemeshStats measure(const TriMesh& mesh, const std::vector<Sym3>& metric, const SurfaceModel& model,
+                    const std::vector<double>* input_radius = nullptr);
+
+}  // namespace vesselmesh::remesh

@@ -1,0 +1,315 @@
+#include "remesh/adapt.h"
+
+#include "analysis/curvature.h"
+#include "centerline/distance_map.h"
+#include "centerline/extract.h"
+#include "io/surface.h"
+#include "mesh/clean.h"
+#include "mesh/connectivity.h"
+#include "mesh/error.h"
+#include "mesh/geometry.h"
+#include "mesh/statistics.h"
+#include "sizing/metric.h"
+#include "sizing/size_field.h"
+#include "synth/shapes.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <optional>
+#include <set>
+
+namespace vesselmesh::remesh {
+namespace {
+
+const double kShort = 1.0 / std::sqrt(2.0), kLong = std::sqrt(2.0);
+
+std::vector<Sym3> metric_of(const TriMesh& m, const std::function<Sym3(const Vec3&)>& at) {
+  std::vector<Sym3> out;
+  for (const Vec3& p : m.points) out.push_back(at(p));
+  return out;
+}
+
+// The fraction of edges of unit length and the mean quality, both measured with the analytic
+// metric at the output's points (not with what the remesher reports).
+struct Figures {
+  double in_range = 0.0, mean_quality = 0.0;
+};
+Figures figures(const TriMesh& m, const std::function<Sym3(const Vec3&)>& at) {
+  const std::vector<Sym3> metric = metric_of(m, at);
+  const mesh::EdgeMap edges = mesh::build_edge_map(m);
+  Figures f;
+  for (const auto& [a, b] : edges.edges) {
+    const double l = sizing::edge_length(m.points[a], m.points[b], metric[a], metric[b]);
+    f.in_range += l >= kShort && l <= kLong;
+  }
+  f.in_range /= edges.num_edges();
+  for (const Triangle& t : m.triangles)
+    f.mean_quality += sizing::triangle_quality(m.points[t[0]], m.points[t[1]], m.points[t[2]], metric[t[0]],
+                                               metric[t[1]], metric[t[2]]);
+  f.mean_quality /= m.num_triangles();
+  return f;
+}
+
+// How far inside a curved surface of radius r the input's flat triangles lie, at most: the
+// depth of a triangle's circumcircle, l^2 / (2 r) for its circumradius l (< the longest edge).
+double facet_depth(const TriMesh& input, double r) {
+  const double l = mesh::statistics(input).edge_length.max;
+  return l * l / (2.0 * r);
+}
+
+Vec3 normal_of(const TriMesh& m, int t) {
+  const Triangle& f = m.triangles[t];
+  return (m.points[f[1]] - m.points[f[0]]).cross(m.points[f[2]] - m.points[f[0]]).normalized();
+}
+
+TEST(Remesh, SphereIsotropicMeetsTheQualityTargets) {
+  const TriMesh input = synth::sphere({.radius = 5.0, .resolution = 0.4, .jitter = 0.3});
+  const auto metric = [](const Vec3&) { return sizing::isotropic_metric(1.0); };
+  const RemeshResult r = adapt(input, metric_of(input, metric));
+  const Figures f = figures(r.mesh, metric);
+  EXPECT_GE(f.in_range, 0.95);
+  EXPECT_GE(f.mean_quality, 0.9);
+  EXPECT_NEAR(r.stats.edges_in_unit_range, f.in_range, 1e-12);
+  const mesh::Statistics s = mesh::statistics(r.mesh);
+  EXPECT_GE(s.min_angle.min, 20.0);
+  EXPECT_NEAR(r.stats.min_angle_deg, s.min_angle.min, 1e-9);
+  EXPECT_TRUE(s.closed);
+  EXPECT_EQ(s.components, 1);
+  EXPECT_EQ(s.genus, 0);
+  EXPECT_GT(s.volume, 0.0);  // still outward
+  // About area / (sqrt 3 / 4) = 726 triangles of unit side.
+  EXPECT_GT(r.stats.triangles, 500);
+  EXPECT_LT(r.stats.triangles, 1000);
+  // Every point on the input (whose flat triangles lie inside the sphere), every triangle facing out.
+  const double depth = facet_depth(input, 5.0);
+  for (const Vec3& p : r.mesh.points) {
+    EXPECT_LE(p.norm(), 5.0 + 1e-9);
+    EXPECT_GE(p.norm(), 5.0 - depth);
+  }
+  for (int t = 0; t < r.mesh.num_triangles(); ++t) {
+    const Triangle& g = r.mesh.triangles[t];
+    const Vec3 c = (r.mesh.points[g[0]] + r.mesh.points[g[1]] + r.mesh.points[g[2]]) / 3.0;
+    EXPECT_GT(normal_of(r.mesh, t).dot(c.normalized()), 0.9) << "triangle " << t;
+  }
+  // The default bound: 2 % of the radius (here 1 / |k| = 5 mm).
+  EXPECT_LE(r.stats.hausdorff, 0.1);
+  EXPECT_EQ(r.stats.hausdorff_relative, -1.0);  // no radii given
+}
+
+TEST(Remesh, CylinderAnisotropicFollowsTheMetric) {
+  const TriMesh input = synth::cylinder({.radius = 3.0, .length = 30.0, .resolution = 0.4, .jitter = 0.3});
+  // Long along the axis (2 mm), short around (0.6 mm): the paper's anisotropic mesh of a pipe.
+  const auto metric = [](const Vec3& p) {
+    const Vec3 radial = Vec3(p.x(), p.y(), 0.0).normalized();
+    return sizing::metric_from_sizes(Vec3::UnitZ(), 2.0, Vec3::UnitZ().cross(radial), 0.6, radial, 0.6);
+  };
+  const RemeshResult r = adapt(input, metric_of(input, metric));
+  const Figures f = figures(r.mesh, metric);
+  EXPECT_GE(f.in_range, 0.9);
+  EXPECT_GE(f.mean_quality, 0.85);
+  // Open ends stay: two loops, their points on the end planes and on the input's rim.
+  const mesh::Statistics s = mesh::statistics(r.mesh);
+  EXPECT_EQ(s.boundary_loops, 2);
+  EXPECT_EQ(s.genus, 0);
+  const mesh::EdgeMap edges = mesh::build_edge_map(r.mesh);
+  int boundary_points = 0;
+  for (const auto& loop : mesh::boundary_loops(r.mesh, edges))
+    for (int v : loop) {
+      const Vec3& p = r.mesh.points[v];
+      EXPECT_TRUE(std::abs(p.z()) < 1e-9 || std::abs(p.z() - 30.0) < 1e-9) << p.transpose();
+      EXPECT_NEAR(std::hypot(p.x(), p.y()), 3.0, facet_depth(input, 3.0));
+      ++boundary_points;
+    }
+  // Around each rim: 2 pi R / 0.6 = 31 edges.
+  EXPECT_NEAR(boundary_points, 2 * 31, 10);
+  // Stretched: the mean edge is longer along the axis than around it.
+  double axial = 0.0, around = 0.0;
+  for (const auto& [a, b] : edges.edges) {
+    const Vec3 e = r.mesh.points[b] - r.mesh.points[a];
+    axial += std::abs(e.z());
+    around += std::hypot(e.x(), e.y());
+  }
+  EXPECT_GT(axial, 1.3 * around);
+}
+
+TEST(Remesh, TorusKeepsItsGenus) {
+  const TriMesh input = synth::torus({.major_radius = 10.0, .minor_radius = 3.0, .resolution = 0.4, .jitter = 0.3});
+  RemeshOptions options;
+  options.hausdorff = 0.1;
+  options.hausdorff_relative = 0.0;
+  const auto metric = [](const Vec3&) { return sizing::isotropic_metric(1.0); };
+  const RemeshResult r = adapt(input, metric_of(input, metric), options);
+  const mesh::Statistics s = mesh::statistics(r.mesh);
+  EXPECT_TRUE(s.closed);
+  EXPECT_EQ(s.genus, 1);
+  EXPECT_LE(r.stats.hausdorff, 0.1);
+  EXPECT_GE(s.min_angle.min, 20.0);
+  EXPECT_GE(figures(r.mesh, metric).in_range, 0.95);
+  // Points on the torus: distance to the core circle is the minor radius.
+  const double depth = facet_depth(input, 3.0);
+  for (const Vec3& p : r.mesh.points) EXPECT_NEAR(std::hypot(std::hypot(p.x(), p.y()) - 10.0, p.z()), 3.0, depth);
+}
+
+TEST(Remesh, CapsStayFlatTheirRimsStayAndLabelsFollow) {
+  const TriMesh input = synth::cylinder({.radius = 3.0, .length = 20.0, .resolution = 0.4, .capped = true, .jitter = 0.3});
+  const auto metric = [](const Vec3&) { return sizing::isotropic_metric(0.8); };
+  const RemeshResult r = adapt(input, metric_of(input, metric));
+  const double depth = facet_depth(input, 3.0);
+  ASSERT_TRUE(r.mesh.has_labels());
+  std::set<int> labels(r.mesh.labels.begin(), r.mesh.labels.end());
+  EXPECT_EQ(labels, (std::set<int>{1, 2, 3}));
+  for (int t = 0; t < r.mesh.num_triangles(); ++t) {
+    const Triangle& g = r.mesh.triangles[t];
+    const Vec3 c = (r.mesh.points[g[0]] + r.mesh.points[g[1]] + r.mesh.points[g[2]]) / 3.0;
+    const int label = r.mesh.labels[t];
+    for (int v : g) {
+      const Vec3& p = r.mesh.points[v];
+      if (label == 2) {
+        EXPECT_NEAR(p.z(), 0.0, 1e-9);
+      } else if (label == 3) {
+        EXPECT_NEAR(p.z(), 20.0, 1e-9);
+      } else {
+        EXPECT_NEAR(std::hypot(p.x(), p.y()), 3.0, depth);
+      }
+    }
+    const Vec3 expected = label == 2 ? Vec3(-Vec3::UnitZ()) : label == 3 ? Vec3(Vec3::UnitZ()) : Vec3(c.x(), c.y(), 0).normalized();
+    EXPECT_GT(normal_of(r.mesh, t).dot(expected), 0.5) << "triangle " << t << " label " << label;
+  }
+  const mesh::Statistics s = mesh::statistics(r.mesh);
+  EXPECT_TRUE(s.closed);
+  EXPECT_EQ(s.genus, 0);
+  EXPECT_GE(s.min_angle.min, 20.0);
+}
+
+TEST(Remesh, HausdorffBoundHoldsOnACoarseMetric) {
+  const TriMesh input = synth::sphere({.radius = 5.0, .resolution = 0.4, .jitter = 0.3});
+  RemeshOptions options;
+  options.hausdorff = 0.05;
+  options.hausdorff_relative = 0.0;
+  const RemeshResult r = adapt(input, metric_of(input, [](const Vec3&) { return sizing::isotropic_metric(4.0); }), options);
+  EXPECT_LE(r.stats.hausdorff, 0.05 + 1e-12);
+  // Measured independently: a triangle's centroid lies inside the sphere by its sagitta.
+  for (const Triangle& g : r.mesh.triangles) {
+    const Vec3 c = (r.mesh.points[g[0]] + r.mesh.points[g[1]] + r.mesh.points[g[2]]) / 3.0;
+    EXPECT_LT(5.0 - c.norm(), 0.05 + facet_depth(input, 5.0));
+  }
+  // Without the bound the same metric strays farther.
+  options.hausdorff = 0.0;
+  const RemeshResult loose = adapt(input, metric_of(input, [](const Vec3&) { return sizing::isotropic_metric(4.0); }), options);
+  EXPECT_GT(loose.stats.hausdorff, 0.1);
+}
+
+TEST(Remesh, DeterministicRunAfterRun) {
+  const TriMesh input = synth::cylinder({.radius = 3.0, .length = 15.0, .resolution = 0.4, .capped = true, .jitter = 0.3});
+  const std::vector<Sym3> metric = metric_of(input, [](const Vec3& p) { return sizing::isotropic_metric(0.5 + 0.05 * p.z()); });
+  const RemeshResult a = adapt(input, metric), b = adapt(input, metric);
+  ASSERT_EQ(a.mesh.points.size(), b.mesh.points.size());
+  EXPECT_TRUE(a.mesh.points == b.mesh.points);
+  EXPECT_TRUE(a.mesh.triangles == b.mesh.triangles);
+  EXPECT_TRUE(a.mesh.labels == b.mesh.labels);
+}
+
+TEST(Remesh, TargetCountIsReachedWithinThreePercent) {
+  const TriMesh input = synth::sphere({.radius = 5.0, .resolution = 0.4, .jitter = 0.3});
+  const std::vector<Sym3> metric = metric_of(input, [](const Vec3&) { return sizing::isotropic_metric(1.0); });
+  const RemeshResult r = adapt_to_count(input, metric, 1500.0);
+  EXPECT_NEAR(r.stats.triangles, 1500.0, 45.0);
+}
+
+TEST(Remesh, AMetricOfAnotherSurfaceIsAnError) {
+  const TriMesh input = synth::sphere({.radius = 5.0, .resolution = 1.0});
+  EXPECT_THROW(adapt(input, std::vector<Sym3>(3, sizing::isotropic_metric(1.0))), InputError);
+  RemeshOptions options;
+  options.hausdorff = -1.0;
+  EXPECT_THROW(adapt(input, metric_of(input, [](const Vec3&) { return sizing::isotropic_metric(1.0); }), options),
+               OptionError);
+}
+
+// The quality targets on the real vessels, for the four size kinds at a common triangle count.
+struct Vessel {
+  std::string file, units;
+};
+void PrintTo(const Vessel& v, std::ostream* os) { *os << v.file << " (" << v.units << ")"; }
+
+class RealVessel : public testing::TestWithParam<Vessel> {};
+
+TEST_P(RealVessel, AllFourKindsMeetTheTargets) {
+  VESSELMESH_REQUIRE_SHARED(path, "vessels/" + GetParam().file);
+  io::SurfaceFile file = io::read_surface(path, {.units = io::parse_unit(GetParam().units)});
+  mesh::clean(file.mesh, {.find_self_intersections = false});
+  const TriMesh& input = file.mesh;
+  const mesh::Statistics before = mesh::statistics(input);
+  const analysis::CurvatureField curvature = analysis::curvature(input);
+  std::optional<centerline::DistanceMap> distance;
+  try {
+    distance = centerline::distance_map(input, centerline::extract(input));
+  } catch (const InputError&) {
+    // A closed surface has no ends: no distance kind, and the radius falls back on 1/|k|.
+  }
+  const std::set<int> labels(input.labels.begin(), input.labels.end());
+  for (sizing::SizeKind kind : {sizing::SizeKind::uniform, sizing::SizeKind::distance, sizing::SizeKind::curvature,
+                                sizing::SizeKind::anisotropic}) {
+    if (kind == sizing::SizeKind::distance && !distance) continue;
+    const std::string name = sizing::size_kind_name(kind);
+    const sizing::SizeField field = sizing::make_size_field(
+        input, {.kind = kind, .target_triangles = 8000.0},
+        {.curvature = &curvature, .distance = distance ? &*distance : nullptr});
+    RemeshOptions options;
+    if (distance) options.input_radius = &distance->radius;
+    const RemeshResult r = adapt(input, field.metric, options);
+    const RemeshStats& s = r.stats;
+    if (kind == sizing::SizeKind::anisotropic) {
+      EXPECT_GE(s.edges_in_unit_range, 0.90) << name;
+      EXPECT_GE(s.mean_quality, 0.85) << name;
+    } else {
+      EXPECT_GE(s.edges_in_unit_range, 0.95) << name;
+      EXPECT_GE(s.mean_quality, 0.90) << name;
+      if (labels.empty() && distance) {
+        EXPECT_GE(s.min_angle_deg, 20.0) << name;
+      } else if (labels.empty()) {
+        // Known gap (issue 6's note): on the closed model the distance bound comes from the
+        // curvature of its bumps and rounded ends, and the uniform mesh keeps a 19.2-degree
+        // triangle there.
+        EXPECT_GE(s.min_angle_deg, 15.0) << name;
+      } else {
+        // The labelled SimVascular model folds by 85 degrees along a border of two wall
+        // faces that a 50-degree crease meets at a few degrees: the triangles kept between
+        // two such feature lines cannot be wider than their angle. All others are.
+        int narrow = 0;
+        for (int t = 0; t < r.mesh.num_triangles(); ++t) {
+          const auto angles = mesh::triangle_angles(r.mesh, t);
+          narrow += *std::min_element(angles.begin(), angles.end()) < 20.0 * std::numbers::pi / 180.0;
+        }
+        EXPECT_LE(narrow, 10) << name;
+      }
+    }
+    if (distance) {
+      EXPECT_LE(s.hausdorff_relative, 0.02 + 1e-9) << name;
+    }
+    // The input's topology and labels.
+    const mesh::Statistics after = mesh::statistics(r.mesh);
+    EXPECT_EQ(after.components, before.components) << name;
+    EXPECT_EQ(after.boundary_loops, before.boundary_loops) << name;
+    EXPECT_EQ(after.genus, before.genus) << name;
+    EXPECT_EQ(std::set<int>(r.mesh.labels.begin(), r.mesh.labels.end()), labels) << name;
+    // At least the count the field predicts, before any correction: the distance bound adds
+    // points where the field is coarser than the vessel's curvature (or the input's facets)
+    // allow, up to 3.8 times on the faceted SimVascular model at this coarse target.
+    EXPECT_GT(s.triangles, 0.75 * 8000.0) << name;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Vessels, RealVessel,
+                         testing::Values(Vessel{"vmtk_aorta_iliac_bifurcation_open_mm.stl", "mm"},
+                                         Vessel{"vmtk_aorta_iliac_bifurcation_closed_mm.stl", "mm"},
+                                         Vessel{"gmsh_aortic_arch_open_cm.stl", "cm"},
+                                         Vessel{"gmsh_carotid_bifurcation_open_m.stl", "m"},
+                                         Vessel{"simvascular_demo_aorta_iliacs_capped_cm.vtp", "cm"}),
+                         [](const testing::TestParamInfo<Vessel>& param) { return test::test_name(param.param.file); });
+
+}  // namespace
+}  // namespace vesselmesh::remesh
