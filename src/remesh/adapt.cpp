@@ -580,21 +580,40 @@ RemeshResult adapt_to_count(const TriMesh& input, const std::vector<Sym3>& metri
                             int max_corrections) {
   if (!(target_triangles > 0.0)) throw OptionError("the target triangle count must be positive");
   RemeshResult result = adapt(input, metrics, options, reporter);
-  std::vector<Sym3> scaled = metrics;
   double seconds = result.stats.seconds;
-  int last = result.stats.triangles;  // what the metric as scaled now gave
+  // The count goes roughly as scale^alpha for a metric scaled by `scale` (alpha = 1 in theory;
+  // the discrete result scatters by some percent). First steps assume alpha = 1; once two runs
+  // bracket the target, the next scale interpolates between them in log-log.
+  struct Run {
+    double scale, count;
+  };
+  std::vector<Run> runs = {{1.0, static_cast<double>(result.stats.triangles)}};
   for (int round = 0; round < max_corrections; ++round) {
     if (std::abs(result.stats.triangles / target_triangles - 1.0) <= tolerance) break;
-    const double ratio = target_triangles / std::max(1, last);
-    reporter.info(fmt::format("{} triangles for a target of {:.0f}: scaling the metric by {:.3f} and remeshing", last,
-                              target_triangles, ratio));
+    const Run* below = nullptr;
+    const Run* above = nullptr;
+    for (const Run& r : runs) {
+      if (r.count < target_triangles && (!below || r.count > below->count)) below = &r;
+      if (r.count >= target_triangles && (!above || r.count < above->count)) above = &r;
+    }
+    double scale = 0.0;
+    if (below && above && below->count > 0.0) {
+      const double t = std::log(target_triangles / below->count) / std::log(above->count / below->count);
+      scale = std::exp(std::log(below->scale) + t * (std::log(above->scale) - std::log(below->scale)));
+    } else {
+      const Run& last = runs.back();
+      scale = last.scale * target_triangles / std::max(1.0, last.count);
+    }
+    reporter.info(fmt::format("{} triangles for a target of {:.0f}: scaling the metric by {:.3f} and remeshing",
+                              result.stats.triangles, target_triangles, scale));
+    std::vector<Sym3> scaled = metrics;
     for (Sym3& m : scaled)
-      for (double& x : m.v) x *= ratio;
+      for (double& x : m.v) x *= scale;
     RemeshResult next = adapt(input, scaled, options, reporter);
     seconds += next.stats.seconds;
-    last = next.stats.triangles;
-    const bool closer = std::abs(next.stats.triangles - target_triangles) < std::abs(result.stats.triangles - target_triangles);
-    if (closer) result = std::move(next);
+    runs.push_back({scale, static_cast<double>(next.stats.triangles)});
+    if (std::abs(next.stats.triangles - target_triangles) < std::abs(result.stats.triangles - target_triangles))
+      result = std::move(next);
   }
   result.stats.seconds = seconds;
   return result;
