@@ -22,6 +22,10 @@ inline Vec3 triangle_centroid(const TriMesh& m, int t) {
   return (m.points[f[0]] + m.points[f[1]] + m.points[f[2]]) / 3.0;
 }
 
+// The point of triangle (a, b, c) closest to p (C. Ericson, Real-Time Collision Detection,
+// 5.1.5: by Voronoi regions of the corners and edges).
+Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
 // Interior angles at corners 0, 1, 2, in radians (0 for a corner with a zero-length edge).
 std::array<double, 3> triangle_angles(const TriMesh& m, int t);
 

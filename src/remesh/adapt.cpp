@@ -94,8 +94,10 @@ bool Remesher::valid(const Triangle& f, const Vec3& fallback) const {
 // Largest distance from the input of the centroid and edge midpoints (the corners are on it).
 double Remesher::deviation(const Triangle& f) const {
   const Vec3 &a = m_.position[f[0]], &b = m_.position[f[1]], &c = m_.position[f[2]];
-  double d = model_.distance((a + b + c) / 3.0);
-  for (const Vec3& p : {Vec3(0.5 * (a + b)), Vec3(0.5 * (b + c)), Vec3(0.5 * (c + a))}) d = std::max(d, model_.distance(p));
+  double d = model_.distance((a + b + c) / 3.0, m_.hint[f[0]]);
+  d = std::max(d, model_.distance(0.5 * (a + b), m_.hint[f[0]]));
+  d = std::max(d, model_.distance(0.5 * (b + c), m_.hint[f[1]]));
+  d = std::max(d, model_.distance(0.5 * (c + a), m_.hint[f[2]]));
   return d;
 }
 
@@ -110,10 +112,10 @@ bool Remesher::split(int a, int b) {
   if (shared.empty()) return false;
   const int c = m_.curve_of_edge(a, b);
   const Vec3 middle = 0.5 * (m_.position[a] + m_.position[b]);
-  const Projection p = c >= 0 ? model_.project_on_curve(c, middle) : model_.project(middle);
+  const Projection p = c >= 0 ? model_.project_on_curve(c, middle) : model_.project(middle, m_.hint[a]);
   const Vec3 normal = c >= 0 ? Vec3(m_.normal[a] + m_.normal[b]) : p.normal;
   const int n = m_.add_point(p.point, p.metric, normal.norm() > 0 ? Vec3(normal.normalized()) : normal,
-                             c >= 0 ? PointKind::curve : PointKind::free, c);
+                             c >= 0 ? PointKind::curve : PointKind::free, c, p.triangle >= 0 ? p.triangle : m_.hint[a]);
   std::vector<std::pair<Triangle, int>> created;
   for (int t : shared) {
     const Triangle f = m_.triangles[t];
@@ -250,7 +252,7 @@ std::optional<Projection> Remesher::move_target(int v) const {
   Vec3 target = p + 0.5 * (sum / count - p);
   const Vec3& n = m_.normal[v];
   target -= (target - p).dot(n) * n;
-  return model_.project(target);
+  return model_.project(target, m_.hint[v]);
 }
 
 bool Remesher::move(int v) {
@@ -275,19 +277,28 @@ bool Remesher::move(int v) {
     m_.normal[v] = old_normal;
     return false;
   }
+  if (target->triangle >= 0) m_.hint[v] = target->triangle;
+  for (int t : around)
+    for (int x : m_.triangles[t]) m_.dirty[x] = 1;  // their triangles changed shape
   ++counts.moves;
   return true;
 }
 
+// The live edges, ascending (a < b): per point, its larger neighbours.
 std::vector<std::array<int, 2>> Remesher::edges() const {
   std::vector<std::array<int, 2>> out;
-  for (size_t t = 0; t < m_.triangles.size(); ++t) {
-    if (!m_.triangle_alive[t]) continue;
-    const Triangle& f = m_.triangles[t];
-    for (int i = 0; i < 3; ++i) out.push_back({std::min(f[i], f[(i + 1) % 3]), std::max(f[i], f[(i + 1) % 3])});
+  out.reserve(3 * m_.position.size());
+  std::vector<int> larger;
+  for (int a = 0; a < static_cast<int>(m_.position.size()); ++a) {
+    if (!m_.point_alive[a]) continue;
+    larger.clear();
+    for (int t : m_.ball[a])
+      for (int v : m_.triangles[t])
+        if (v > a) larger.push_back(v);
+    std::sort(larger.begin(), larger.end());
+    larger.erase(std::unique(larger.begin(), larger.end()), larger.end());
+    for (int b : larger) out.push_back({a, b});
   }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 
@@ -329,17 +340,21 @@ int Remesher::flip_pass() {
   return done;
 }
 
+// Tries the points whose ball changed since their last try (a failed move stays failed).
 int Remesher::move_pass() {
   int done = 0;
-  for (int v = 0; v < static_cast<int>(m_.position.size()); ++v)
-    if (m_.point_alive[v]) done += move(v);
+  for (int v = 0; v < static_cast<int>(m_.position.size()); ++v) {
+    if (!m_.point_alive[v] || !m_.dirty[v]) continue;
+    m_.dirty[v] = 0;
+    done += move(v);
+  }
   return done;
 }
 
 // The largest distance a triangle may keep from the input: the bound at the input triangle
 // nearest its centroid.
 double Remesher::allowed_deviation(const Triangle& f) const {
-  const Projection p = model_.project((m_.position[f[0]] + m_.position[f[1]] + m_.position[f[2]]) / 3.0);
+  const Projection p = model_.project((m_.position[f[0]] + m_.position[f[1]] + m_.position[f[2]]) / 3.0, m_.hint[f[0]]);
   const Triangle& g = model_.input().triangles[p.triangle];
   return std::min({bound_[g[0]], bound_[g[1]], bound_[g[2]]});
 }
@@ -367,15 +382,21 @@ void Remesher::bound_hausdorff() {
   }
 }
 
-// Passes of split / collapse / flip / move until splits and collapses stop.
+// Passes of split / collapse / flip / move until splits and collapses stop, or stagnate: where
+// the metric varies fast along the surface a few hundred edges flicker between a split and a
+// collapse (measured: 150 of each per pass on the aortic arch, forever), so passes end when
+// their count falls by less than a tenth.
 void Remesher::adapt_passes(const Reporter& reporter, double from, double to) {
+  int previous = std::numeric_limits<int>::max();
   for (int it = 0; it < o_.max_iterations; ++it) {
     const int splits = split_pass();
     const int collapses = collapse_pass();
     flip_pass();
     move_pass();
     reporter.progress("remeshing", from + (to - from) * (it + 1) / o_.max_iterations);
-    if (splits + collapses == 0) break;
+    const int changes = splits + collapses;
+    if (changes == 0 || (it >= 2 && changes > 0.9 * previous)) break;
+    previous = changes;
   }
 }
 
@@ -396,17 +417,18 @@ int Remesher::tighten_metric() {
     const double grow = std::min(4.0, d / (0.5 * allowed));
     const Vec3 &a = m_.position[f[0]], &b = m_.position[f[1]], &c = m_.position[f[2]];
     for (const Vec3& p : {a, b, c, Vec3((a + b + c) / 3.0), Vec3(0.5 * (a + b)), Vec3(0.5 * (b + c)), Vec3(0.5 * (c + a))})
-      for (int v : model_.input().triangles[model_.project(p).triangle]) factor[v] = std::max(factor[v], grow);
+      for (int v : model_.input().triangles[model_.project(p, m_.hint[f[0]]).triangle]) factor[v] = std::max(factor[v], grow);
   }
   if (count == 0) return 0;
   for (size_t v = 0; v < factor.size(); ++v)
     if (factor[v] > 1.0) model_.refine_metric(static_cast<int>(v), factor[v]);
   for (size_t v = 0; v < m_.position.size(); ++v) {
     if (!m_.point_alive[v]) continue;
+    m_.dirty[v] = 1;
     switch (m_.kind[v]) {
       case PointKind::corner: m_.metric[v] = model_.metric(static_cast<int>(v)); break;  // corners are input points
       case PointKind::curve: m_.metric[v] = model_.project_on_curve(m_.curve[v], m_.position[v]).metric; break;
-      case PointKind::free: m_.metric[v] = model_.project(m_.position[v]).metric; break;
+      case PointKind::free: m_.metric[v] = model_.project(m_.position[v], m_.hint[v]).metric; break;
     }
   }
   return count;
@@ -422,17 +444,13 @@ void Remesher::run(const Reporter& reporter) {
     if (far == 0) break;
     adapt_passes(reporter, 0.5 + 0.1 * round, 0.6 + 0.1 * round);
   }
-  for (int it = 0; it < 3; ++it) {
-    flip_pass();
-    move_pass();
-  }
+  for (int it = 0; it < 8; ++it)  // until flips and moves stop (moves skip settled points)
+    if (flip_pass() + move_pass() == 0) break;
   if (bounded) {
     bound_hausdorff();
     keep_bound_ = true;
-    for (int it = 0; it < 2; ++it) {  // mend the shapes the refinement made, within the bound
-      flip_pass();
-      move_pass();
-    }
+    for (int it = 0; it < 8; ++it)  // mend the shapes the refinement made, within the bound
+      if (flip_pass() + move_pass() == 0) break;
   }
   reporter.progress("remeshing", 1.0);
 }

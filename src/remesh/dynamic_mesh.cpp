@@ -12,8 +12,8 @@ namespace vesselmesh::remesh {
 DynamicMesh::DynamicMesh(const SurfaceModel& model) {
   const TriMesh& in = model.input();
   for (int v = 0; v < in.num_points(); ++v) {
-    const Projection p = model.project(in.points[v]);
-    add_point(in.points[v], model.metric(v), p.normal, model.kind(v), model.curve_of_point(v));
+    const Projection p = model.project(in.points[v], model.triangle_at(v));
+    add_point(in.points[v], model.metric(v), p.normal, model.kind(v), model.curve_of_point(v), model.triangle_at(v));
   }
   labelled_ = in.has_labels();
   for (int t = 0; t < in.num_triangles(); ++t) add_triangle(in.triangles[t], labelled_ ? in.labels[t] : 0);
@@ -22,8 +22,10 @@ DynamicMesh::DynamicMesh(const SurfaceModel& model) {
     if (features.curve_of_edge[e] >= 0) set_curve_edge(features.edges.edges[e][0], features.edges.edges[e][1], features.curve_of_edge[e]);
 }
 
-int DynamicMesh::add_point(const Vec3& p, const Sym3& m, const Vec3& n, PointKind k, int c) {
+int DynamicMesh::add_point(const Vec3& p, const Sym3& m, const Vec3& n, PointKind k, int c, int input_triangle) {
   position.push_back(p);
+  hint.push_back(input_triangle);
+  dirty.push_back(1);
   metric.push_back(m);
   normal.push_back(n);
   kind.push_back(k);
@@ -38,19 +40,27 @@ int DynamicMesh::add_triangle(const Triangle& f, int label) {
   triangles.push_back(f);
   labels.push_back(label);
   triangle_alive.push_back(1);
-  for (int v : f) ball[v].push_back(t);
+  for (int v : f) {
+    ball[v].push_back(t);
+    dirty[v] = 1;
+  }
   return t;
 }
 
 void DynamicMesh::kill_triangle(int t) {
   triangle_alive[t] = 0;
-  for (int v : triangles[t]) std::erase(ball[v], t);
+  for (int v : triangles[t]) {
+    std::erase(ball[v], t);
+    dirty[v] = 1;
+  }
 }
 
 void DynamicMesh::set_corner(int t, int corner, int point) {
   std::erase(ball[triangles[t][corner]], t);
+  dirty[triangles[t][corner]] = 1;
   triangles[t][corner] = point;
   ball[point].push_back(t);
+  for (int v : triangles[t]) dirty[v] = 1;
 }
 
 uint64_t DynamicMesh::key(int a, int b) {

@@ -24,7 +24,11 @@ class DynamicMesh {
   std::vector<Vec3> normal;  // reference normal of the surface at the point (free points)
   std::vector<PointKind> kind;
   std::vector<int> curve;    // curve points: their curve
+  std::vector<int> hint;     // an input triangle at or near the point (for local projections)
   std::vector<char> point_alive;
+  // Set when a point's ball changes (a triangle added, removed or re-cornered there); the move
+  // pass clears it and skips points where nothing changed since their last try.
+  std::vector<char> dirty;
 
   // Triangles.
   std::vector<Triangle> triangles;
@@ -32,7 +36,7 @@ class DynamicMesh {
   std::vector<char> triangle_alive;
   std::vector<std::vector<int>> ball;  // per point, its live triangles
 
-  int add_point(const Vec3& p, const Sym3& m, const Vec3& n, PointKind k, int c);
+  int add_point(const Vec3& p, const Sym3& m, const Vec3& n, PointKind k, int c, int input_triangle);
   int add_triangle(const Triangle& f, int label);
   void kill_triangle(int t);
   void set_corner(int t, int corner, int point);  // moves a triangle corner to another point

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace vesselmesh::remesh {
 
@@ -34,7 +35,8 @@ SurfaceModel::SurfaceModel(const TriMesh& input, const std::vector<Sym3>& metric
     : SurfaceModel(input, metrics, analysis::detect_features(input, options)) {}
 
 SurfaceModel::SurfaceModel(const TriMesh& input, const std::vector<Sym3>& metrics, analysis::Features features)
-    : input_(input), metrics_(metrics), locator_(input), features_(std::move(features)) {
+    : input_(input), metrics_(metrics), locator_(input), incidence_(mesh::build_vertex_triangles(input)),
+      features_(std::move(features)) {
   VM_CHECK(metrics.size() == input.points.size(), "one metric per input point");
   VM_CHECK(features_.corner_copy.size() == input.triangles.size(), "features of another surface");
   logs_.reserve(metrics.size());
@@ -72,18 +74,76 @@ Sym3 SurfaceModel::metric_at(int triangle, const Vec3& l) const {
   return sizing::interpolate_logs(logs, weights, 3);
 }
 
-Projection SurfaceModel::project(const Vec3& p) const {
-  const mesh::SurfaceLocator::Hit hit = locator_.closest(p);
-  const Triangle& f = input_.triangles[hit.triangle];
-  const Vec3 l = barycentric(input_.points[f[0]], input_.points[f[1]], input_.points[f[2]], hit.point);
+Projection SurfaceModel::finish(const Vec3& point, int triangle) const {
+  const Triangle& f = input_.triangles[triangle];
+  const Vec3 l = barycentric(input_.points[f[0]], input_.points[f[1]], input_.points[f[2]], point);
   Projection out;
-  out.point = hit.point;
-  out.triangle = hit.triangle;
-  const auto& c = features_.corner_copy[hit.triangle];
+  out.point = point;
+  out.triangle = triangle;
+  const auto& c = features_.corner_copy[triangle];
   out.normal = l[0] * copy_normals_[c[0]] + l[1] * copy_normals_[c[1]] + l[2] * copy_normals_[c[2]];
   if (out.normal.norm() > 0.0) out.normal.normalize();
-  out.metric = metric_at(hit.triangle, l);
+  out.metric = metric_at(triangle, l);
   return out;
+}
+
+Projection SurfaceModel::project(const Vec3& p) const {
+  const mesh::SurfaceLocator::Hit hit = locator_.closest(p);
+  return finish(hit.point, hit.triangle);
+}
+
+std::pair<Vec3, int> SurfaceModel::walk(const Vec3& p, int hint) const {
+  constexpr int kMaxVisits = 256;
+  auto closest = [&](int t) {
+    const Triangle& f = input_.triangles[t];
+    return mesh::closest_point_on_triangle(p, input_.points[f[0]], input_.points[f[1]], input_.points[f[2]]);
+  };
+  Vec3 best = closest(hint);
+  double best_d = (best - p).squaredNorm();
+  int best_t = hint;
+  // Expand from every triangle that is the best so far: a descent to a local minimum over
+  // triangles sharing a point, whose last step has looked at the whole ring of the result.
+  // Visited triangles carry the number of this walk (per thread: queries stay const and safe).
+  thread_local std::vector<uint32_t> stamp;
+  thread_local uint32_t walk_number = 0;
+  if (stamp.size() != input_.triangles.size() || ++walk_number == 0) {
+    stamp.assign(input_.triangles.size(), 0);
+    walk_number = 1;
+  }
+  stamp[hint] = walk_number;
+  int visits = 1;
+  std::vector<int> stack = {hint};
+  while (!stack.empty()) {
+    const int t = stack.back();
+    stack.pop_back();
+    for (int v : input_.triangles[t])
+      for (int u : incidence_.of(v)) {
+        if (stamp[u] == walk_number) continue;
+        if (++visits > kMaxVisits) return {Vec3::Zero(), -1};
+        stamp[u] = walk_number;
+        const Vec3 q = closest(u);
+        const double d = (q - p).squaredNorm();
+        if (d < best_d) {
+          best = q;
+          best_d = d;
+          best_t = u;
+          stack.push_back(u);
+        }
+      }
+  }
+  return {best, best_t};
+}
+
+Projection SurfaceModel::project(const Vec3& p, int hint) const {
+  if (hint < 0) return project(p);
+  const auto [point, triangle] = walk(p, hint);
+  return triangle >= 0 ? finish(point, triangle) : project(p);
+}
+
+double SurfaceModel::distance(const Vec3& p, int hint) const {
+  if (hint < 0) return distance(p);
+  const auto [point, triangle] = walk(p, hint);
+  return triangle >= 0 ? (point - p).norm() : distance(p);
 }
 
 Projection SurfaceModel::project_on_curve(int curve, const Vec3& p) const {

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "analysis/features.h"
+#include "mesh/connectivity.h"
 #include "mesh/locator.h"
 #include "mesh/sym3.h"
 #include "mesh/trimesh.h"
@@ -45,18 +46,30 @@ class SurfaceModel {
   // Multiplies the metric at an input point by `factor` (> 1: sizes shrink by its square root).
   void refine_metric(int input_point, double factor);
 
+  // The closest point of the input (AABB tree).
   Projection project(const Vec3& p) const;
+  // The closest point near input triangle `hint` (p lies near the surface there): a descent
+  // over triangles sharing a point with the best one so far, then the global query when it
+  // wanders too far. A local closest point: on a thin vessel it stays on the same wall.
+  Projection project(const Vec3& p, int hint) const;
   Projection project_on_curve(int curve, const Vec3& p) const;
-  // Distance from p to the input surface.
+  // Distance from p to the input surface (global; with a hint, local as above: never smaller).
   double distance(const Vec3& p) const;
+  double distance(const Vec3& p, int hint) const;
+  // An input triangle at input point v.
+  int triangle_at(int input_point) const { return incidence_.triangles[incidence_.offsets[input_point]]; }
 
  private:
   struct Curve;
   Sym3 metric_at(int triangle, const Vec3& barycentric) const;
+  Projection finish(const Vec3& point, int triangle) const;
+  // The local closest point: (point, triangle), or triangle -1 when the walk gave up.
+  std::pair<Vec3, int> walk(const Vec3& p, int hint) const;
 
   const TriMesh& input_;
   std::vector<Sym3> metrics_, logs_;
   mesh::SurfaceLocator locator_;
+  mesh::VertexTriangles incidence_;
   analysis::Features features_;
   std::vector<Vec3> copy_normals_;  // per point copy (analysis::Features)
   std::vector<std::unique_ptr<Curve>> curves_;
