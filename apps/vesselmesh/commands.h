@@ -80,8 +80,8 @@ struct SizedSurface {
   sizing::SizeField field;
 };
 SizedSurface size_surface(const CheckedSurface& surface, const SizingArgs& args, const Reporter& reporter);
-// Point data `size` and `metric` (xx, xy, xz, yy, yz, zz).
-std::vector<Field> size_fields(const sizing::SizeField& field);
+// Point data `size`, `metric` (xx, xy, xz, yy, yz, zz) and, with a distance map, `radius`.
+std::vector<Field> size_fields(const SizedSurface& sized);
 Json size_json(const sizing::SizeField& field);
 
 // A remeshed surface: point data metric (what it was adapted to), cell data quality (in that

@@ -20,8 +20,9 @@ namespace {
 // The metric stored in FIELD.vtp (`vesselmesh size` writes one): point data `metric` (6
 // components) or `size` (mm, isotropic). A field on the same points is taken as it is; one on
 // another surface is carried over by projecting each point onto it (log-Euclidean
-// interpolation inside its triangles).
-std::vector<Sym3> read_metric(const std::string& path, const TriMesh& surface) {
+// interpolation inside its triangles). The field's `radius` (the distance map's), when it has
+// one on the same points, goes to `radius`.
+std::vector<Sym3> read_metric(const std::string& path, const TriMesh& surface, std::vector<double>& radius) {
   const io::SurfaceFile file = io::read_surface(path);
   std::vector<Sym3> metric(file.mesh.points.size());
   const Field* tensor = nullptr;
@@ -47,7 +48,11 @@ std::vector<Sym3> read_metric(const std::string& path, const TriMesh& surface) {
                                    "{:.4g}, {:.4g})",
                                    path, v, eigen.eigenvalues()[0], eigen.eigenvalues()[1], eigen.eigenvalues()[2]));
   }
-  if (file.mesh.points == surface.points) return metric;
+  if (file.mesh.points == surface.points) {
+    for (const Field& f : file.point_data)
+      if (f.name == "radius" && f.components == 1) radius = f.values;
+    return metric;
+  }
   remesh::SurfaceModel field(file.mesh, metric, remesh::FeatureOptions{});
   std::vector<Sym3> out(surface.points.size());
   double farthest = 0.0;
@@ -153,18 +158,21 @@ Command add_remesh_command(CLI::App& parent) {
             const auto start = std::chrono::steady_clock::now();
 
             std::vector<Sym3> metric;
+            std::vector<double> field_radius;
             std::optional<SizedSurface> sized;
             if (o->metric.empty()) {
               sized = size_surface(surface, o->sizing, reporter);
               metric = sized->field.metric;
             } else {
-              metric = read_metric(o->metric, input);
+              metric = read_metric(o->metric, input, field_radius);
             }
             // The local radius for the relative distance bound: the distance map's, when the
             // surface has ends to trace centerlines between.
             std::optional<centerline::DistanceMap> distance;
             if (sized && sized->distance) {
               distance = sized->distance;
+            } else if (!field_radius.empty()) {
+              distance = centerline::DistanceMap{.distance = {}, .radius = std::move(field_radius)};
             } else if (!sized && o->remesh.hausdorff_relative > 0.0) {
               try {
                 distance = centerline::distance_map(input, centerline::extract(input, {}, reporter));

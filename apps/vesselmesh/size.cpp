@@ -59,11 +59,14 @@ SizedSurface size_surface(const CheckedSurface& surface, const SizingArgs& args,
   return out;
 }
 
-std::vector<Field> size_fields(const sizing::SizeField& field) {
+std::vector<Field> size_fields(const SizedSurface& sized) {
+  const sizing::SizeField& field = sized.field;
   Field metric{.name = "metric", .components = 6, .values = {}};
   metric.values.reserve(field.metric.size() * 6);
   for (const Sym3& m : field.metric) metric.values.insert(metric.values.end(), m.v.begin(), m.v.end());
-  return {Field::scalar("size", field.size), metric};
+  std::vector<Field> out = {Field::scalar("size", field.size), metric};
+  if (sized.distance) out.push_back(Field::scalar("radius", sized.distance->radius));
+  return out;
 }
 
 Json size_json(const sizing::SizeField& field) {
@@ -83,7 +86,8 @@ Command add_size_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand(
       "size", "The size field the remesher adapts to: per point an SPD metric (isotropic: I/h^2) from a uniform size, "
               "the distance to the centerline, the mean curvature, or the principal curvatures (anisotropic); clamped, "
-              "graded, optionally scaled to a triangle count. Writes point data size (mm) and metric (xx,xy,xz,yy,yz,zz)");
+              "graded, optionally scaled to a triangle count. Writes point data size (mm), metric (xx,xy,xz,yy,yz,zz) "
+              "and, when the surface has ends, radius (mm, the distance map's, for the remesher's distance bound)");
   struct Options {
     std::string input, output, units, medit;
     SizingArgs sizing;
@@ -108,7 +112,7 @@ Command add_size_command(CLI::App& parent) {
             const auto start = std::chrono::steady_clock::now();
             const SizedSurface sized = size_surface(surface, o->sizing, reporter);
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            io::write_vtp(o->output, surface.file.mesh, size_fields(sized.field));
+            io::write_vtp(o->output, surface.file.mesh, size_fields(sized));
             if (!o->medit.empty()) {
               io::write_medit(o->medit + ".mesh", surface.file.mesh);
               io::write_medit_metric(o->medit + ".sol", sized.field.metric);

@@ -27,7 +27,8 @@ const double kFlipBendCos = std::cos(20.0 * std::numbers::pi / 180.0);
 class Remesher {
  public:
   Remesher(SurfaceModel& model, const RemeshOptions& options, std::vector<double> bound)
-      : model_(model), m_(model), o_(options), bound_(std::move(bound)) {}
+      : model_(model), m_(model), o_(options), bound_(std::move(bound)),
+        smallest_bound_(bound_.empty() ? 0.0 : *std::min_element(bound_.begin(), bound_.end())) {}
 
   void run(const Reporter& reporter);
   DynamicMesh& mesh() { return m_; }
@@ -42,7 +43,7 @@ class Remesher {
   double deviation(const Triangle& f) const;
   // Within the distance bound, once the final refinement has enforced it (before, the metric
   // keeps the mesh close, and checking every operation would slow them all).
-  bool close_enough(const Triangle& f) const { return !keep_bound_ || deviation(f) <= allowed_deviation(f); }
+  bool close_enough(const Triangle& f) const { return !keep_bound_ || !too_far(f); }
   double worst_quality(const std::vector<int>& triangles) const;
 
   bool split(int a, int b);
@@ -57,6 +58,7 @@ class Remesher {
   int flip_pass();
   int move_pass();
   double allowed_deviation(const Triangle& f) const;
+  bool too_far(const Triangle& f) const;
   void adapt_passes(const Reporter& reporter, double from, double to);
   int tighten_metric();
   void bound_hausdorff();
@@ -65,6 +67,7 @@ class Remesher {
   DynamicMesh m_;
   const RemeshOptions& o_;
   std::vector<double> bound_;  // per input point: the largest distance allowed there (inf: none)
+  double smallest_bound_ = 0.0;
   bool keep_bound_ = false;
 };
 
@@ -359,12 +362,23 @@ double Remesher::allowed_deviation(const Triangle& f) const {
   return std::min({bound_[g[0]], bound_[g[1]], bound_[g[2]]});
 }
 
-// Splits the longest edge of every triangle farther from the input than allowed.
+// Whether a triangle strays farther from the input than allowed there (the deviation first:
+// below the smallest bound anywhere, the local bound need not be looked up).
+bool Remesher::too_far(const Triangle& f) const {
+  const double d = deviation(f);
+  return d > smallest_bound_ && d > allowed_deviation(f);
+}
+
+// Splits the longest edge of every triangle farther from the input than allowed. Splits and
+// flips only add triangles (new indices) and leave the others as they are, so each round looks
+// at the triangles the last one made.
 void Remesher::bound_hausdorff() {
+  size_t first = 0;
   for (int round = 0; round < 10; ++round) {
     std::vector<std::array<int, 2>> todo;
-    for (size_t t = 0; t < m_.triangles.size(); ++t) {
-      if (!m_.triangle_alive[t] || deviation(m_.triangles[t]) <= allowed_deviation(m_.triangles[t])) continue;
+    const size_t end = m_.triangles.size();
+    for (size_t t = first; t < end; ++t) {
+      if (!m_.triangle_alive[t] || !too_far(m_.triangles[t])) continue;
       const Triangle& f = m_.triangles[t];
       int best = 0;
       for (int i = 1; i < 3; ++i)
@@ -376,6 +390,7 @@ void Remesher::bound_hausdorff() {
     std::sort(todo.begin(), todo.end());
     todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
     if (todo.empty()) return;
+    first = end;
     for (const auto& [a, b] : todo)
       if (m_.connected(a, b)) counts.refinements += split(a, b);
     flip_pass();
@@ -410,8 +425,9 @@ int Remesher::tighten_metric() {
   for (size_t t = 0; t < m_.triangles.size(); ++t) {
     if (!m_.triangle_alive[t]) continue;
     const Triangle& f = m_.triangles[t];
-    const double allowed = allowed_deviation(f);
     const double d = deviation(f);
+    if (!(d > smallest_bound_)) continue;
+    const double allowed = allowed_deviation(f);
     if (!(d > allowed)) continue;
     ++count;
     const double grow = std::min(4.0, d / (0.5 * allowed));
@@ -458,7 +474,7 @@ void Remesher::run(const Reporter& reporter) {
 }  // namespace
 
 RemeshStats measure(const TriMesh& mesh, const std::vector<Sym3>& metric, const SurfaceModel& model,
-                    const std::vector<double>* input_radius) {
+                    const std::vector<double>* input_radius, const std::vector<int>* hints) {
   VM_CHECK(metric.size() == mesh.points.size(), "one metric per point");
   RemeshStats s;
   s.points = mesh.num_points();
@@ -485,12 +501,13 @@ RemeshStats measure(const TriMesh& mesh, const std::vector<Sym3>& metric, const 
     s.min_quality = std::min(s.min_quality, q);
     // Distance from the input: the centroid and the edge midpoints (the corners lie on it).
     const Vec3 &a = mesh.points[f[0]], &b = mesh.points[f[1]], &c = mesh.points[f[2]];
+    const int hint = hints ? (*hints)[f[0]] : -1;
     double d = 0.0;
     for (const Vec3& p : {Vec3((a + b + c) / 3.0), Vec3(0.5 * (a + b)), Vec3(0.5 * (b + c)), Vec3(0.5 * (c + a))})
-      d = std::max(d, model.distance(p));
+      d = std::max(d, model.distance(p, hint));
     s.hausdorff = std::max(s.hausdorff, d);
     if (input_radius) {
-      const Projection p = model.project((a + b + c) / 3.0);
+      const Projection p = model.project((a + b + c) / 3.0, hint);
       const Triangle& g = in.triangles[p.triangle];
       const double r = ((*input_radius)[g[0]] + (*input_radius)[g[1]] + (*input_radius)[g[2]]) / 3.0;
       if (r > 0.0) s.hausdorff_relative = std::max(s.hausdorff_relative, d / r);
@@ -580,8 +597,9 @@ RemeshResult adapt(const TriMesh& input, const std::vector<Sym3>& metrics, const
   Remesher remesher(model, options, bound);
   remesher.run(reporter);
   RemeshResult result;
-  result.mesh = remesher.mesh().to_trimesh(&result.metric);
-  result.stats = measure(result.mesh, result.metric, model, options.input_radius);
+  std::vector<int> hints;
+  result.mesh = remesher.mesh().to_trimesh(&result.metric, &hints);
+  result.stats = measure(result.mesh, result.metric, model, options.input_radius, &hints);
   result.stats.splits = remesher.counts.splits;
   result.stats.collapses = remesher.counts.collapses;
   result.stats.flips = remesher.counts.flips;

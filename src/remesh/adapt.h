@@ -12,8 +12,8 @@
 // points to the mean of their neighbours in their tangent plane (then back onto the input)
 // where that raises the worst quality of their ball. Until splits and collapses stop, then a
 // few more flips and moves.
-// Guarantees: every point lies on the input (closest point of the input triangles, AABB
-// tree); feature curves (open ends, creases above the feature angle, label borders) are
+// Guarantees: every point lies on the input (its closest point on the input triangles, found
+// by a walk from the input triangle it came from, or the AABB tree when that walk wanders); feature curves (open ends, creases above the feature angle, label borders) are
 // remeshed along themselves and their corners stay; labels follow their triangles; the
 // topology (components, boundary loops, genus) is kept; no triangle is created degenerate or
 // with its normal more than 60 degrees from the input's normal there. Deterministic.
@@ -84,8 +84,10 @@ RemeshResult adapt_to_count(const TriMesh& input, const std::vector<Sym3>& metri
                             double tolerance = 0.03, int max_corrections = 4);
 
 // The figures of `mesh` against per-point metrics, its distance from `model`'s input, and
-// (with radii) relative to the local radius.
+// (with radii) relative to the local radius. The distance is the global closest point's, or
+// with `hints` (an input triangle per point) the local one (SurfaceModel::project with a hint:
+// never smaller, on the same wall), which is what adapt() reports.
 RemeshStats measure(const TriMesh& mesh, const std::vector<Sym3>& metric, const SurfaceModel& model,
-                    const std::vector<double>* input_radius = nullptr);
+                    const std::vector<double>* input_radius = nullptr, const std::vector<int>* hints = nullptr);
 
 }  // namespace vesselmesh::remesh

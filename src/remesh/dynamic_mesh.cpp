@@ -110,7 +110,7 @@ double DynamicMesh::quality(const Triangle& f) const {
                                   metric[f[2]]);
 }
 
-TriMesh DynamicMesh::to_trimesh(std::vector<Sym3>* metrics) const {
+TriMesh DynamicMesh::to_trimesh(std::vector<Sym3>* metrics, std::vector<int>* hints) const {
   TriMesh out;
   std::vector<int> remap(position.size(), -1);
   for (size_t t = 0; t < triangles.size(); ++t) {
@@ -121,6 +121,7 @@ TriMesh DynamicMesh::to_trimesh(std::vector<Sym3>* metrics) const {
         remap[v] = out.num_points();
         out.points.push_back(position[v]);
         if (metrics) metrics->push_back(metric[v]);
+        if (hints) hints->push_back(hint[v]);
       }
       v = remap[v];
     }

@@ -58,7 +58,8 @@ class DynamicMesh {
   double quality(const Triangle& f) const;
 
   // The surface: triangles, labels, and the metric per point (dead entries dropped).
-  TriMesh to_trimesh(std::vector<Sym3>* metrics = nullptr) const;
+  // With `hints`, each output point's input triangle (for local distance queries).
+  TriMesh to_trimesh(std::vector<Sym3>* metrics = nullptr, std::vector<int>* hints = nullptr) const;
 
  private:
   static uint64_t key(int a, int b);

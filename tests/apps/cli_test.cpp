@@ -265,10 +265,17 @@ TEST(Cli, SizeWritesSizeAndMetric) {
   EXPECT_EQ(j["kind"], "distance");
   EXPECT_NEAR(j["size"]["median"].get<double>(), 2 * M_PI * 3 / 20, 0.01);
   const io::SurfaceFile field = io::read_surface(tmp.path("f.vtp"));
-  ASSERT_EQ(field.point_data.size(), 2u);
+  ASSERT_EQ(field.point_data.size(), 3u);
   EXPECT_EQ(field.point_data[0].name, "size");
   EXPECT_EQ(field.point_data[1].name, "metric");
   EXPECT_EQ(field.point_data[1].components, 6);
+  EXPECT_EQ(field.point_data[2].name, "radius");  // the distance map's, for the remesher's bound
+  for (size_t v = 0; v < field.mesh.points.size(); ++v) {
+    const Vec3& p = field.mesh.points[v];
+    if (p.z() > 4.0 && p.z() < 16.0) {
+      EXPECT_NEAR(field.point_data[2].values[v], 3.0, 0.1) << v;
+    }
+  }
   const RunResult target = run({"size", tmp.path("p.stl"), "--size", "anisotropic", "--target-triangles", "3000", "-o",
                                 tmp.path("g.vtp"), "--json"});
   ASSERT_EQ(target.code, 0) << target.err;
