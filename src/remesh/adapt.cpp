@@ -50,7 +50,7 @@ class Remesher {
   bool collapse(int a, int b);  // removes a
   bool flip(int a, int b);
   bool move(int v);
-  std::optional<Projection> move_target(int v) const;
+  std::optional<Projection> move_target(int v);  // tries the position, then puts it back
 
   std::vector<std::array<int, 2>> edges() const;
   int split_pass();
@@ -222,7 +222,7 @@ bool Remesher::flip(int a, int b) {
 // triangles (the apex that makes each an equilateral triangle of the metric over its far
 // edge), in its tangent plane; for a curve point, halfway to the middle of its two curve
 // neighbours. Then back onto the input.
-std::optional<Projection> Remesher::move_target(int v) const {
+std::optional<Projection> Remesher::move_target(int v) {
   const Vec3& p = m_.position[v];
   if (m_.kind[v] == PointKind::curve) {
     std::vector<int> along;
@@ -255,6 +255,13 @@ std::optional<Projection> Remesher::move_target(int v) const {
   Vec3 target = p + 0.5 * (sum / count - p);
   const Vec3& n = m_.normal[v];
   target -= (target - p).dot(n) * n;
+  // Not worth projecting when, even in the tangent plane, the ball would not get better.
+  const double before = worst_quality(m_.ball[v]);
+  const Vec3 kept = p;
+  m_.position[v] = target;
+  const double after = worst_quality(m_.ball[v]);
+  m_.position[v] = kept;
+  if (!(after > before + 1e-6)) return std::nullopt;
   return model_.project(target, m_.hint[v]);
 }
 

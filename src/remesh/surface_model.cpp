@@ -109,6 +109,7 @@ std::pair<Vec3, int> SurfaceModel::walk(const Vec3& p, int hint) const {
   };
   Vec3 best = closest(hint);
   double best_d = (best - p).squaredNorm();
+  double best_length = std::sqrt(best_d);
   int best_t = hint;
   // Expand from every triangle that is the best so far: a descent to a local minimum over
   // triangles sharing a point, whose last step has looked at the whole ring of the result.
@@ -131,13 +132,14 @@ std::pair<Vec3, int> SurfaceModel::walk(const Vec3& p, int hint) const {
         if (++visits > kMaxVisits) return {Vec3::Zero(), -1};
         stamp[u] = walk_number;
         // No point of u is nearer than its sphere allows: skip it when that is no better.
-        const double gap = (p - sphere_center_[u]).norm() - sphere_radius_[u];
-        if (gap > 0.0 && gap * gap >= best_d) continue;
+        const double reach = sphere_radius_[u] + best_length;
+        if ((p - sphere_center_[u]).squaredNorm() >= reach * reach) continue;
         const Vec3 q = closest(u);
         const double d = (q - p).squaredNorm();
         if (d < best_d) {
           best = q;
           best_d = d;
+          best_length = std::sqrt(d);
           best_t = u;
           stack.push_back(u);
         }
