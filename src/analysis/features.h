@@ -25,7 +25,7 @@ namespace vesselmesh::analysis {
 enum class PointKind : uint8_t { free, curve, corner };
 
 struct FeatureOptions {
-  double feature_angle_deg = 45.0;  // dihedral angle above which an edge is a crease
+  double feature_angle_deg = 60.0;  // dihedral angle above which an edge is a crease
   double corner_angle_deg = 60.0;   // turn of a curve above which its point is a corner
   int min_crease_edges = 5;         // shorter connected sets of crease edges are noise
 };
