@@ -272,9 +272,9 @@ TEST_P(RealVessel, AllFourKindsMeetTheTargets) {
         EXPECT_GE(s.min_angle_deg, 20.0) << name;
       } else {
         // Known gap (issue 6's note): on the closed model the distance bound comes from the
-        // curvature of its bumps and rounded ends; 4 of 27.9k triangles of the curvature mesh
-        // stay below 20 degrees there (13.8 the smallest).
-        EXPECT_GE(s.min_angle_deg, 12.0) << name;
+        // curvature of its bumps and rounded ends; at this coarse target the uniform mesh keeps
+        // a 19.7-degree triangle there (at 20000 triangles every kind is above 24 degrees).
+        EXPECT_GE(s.min_angle_deg, 18.0) << name;
       }
     }
     if (distance) {
