@@ -49,8 +49,7 @@ def figures(kind, output):
     return json.loads(out)
 
 def radius_median():
-    # The distance map's radius, through our own measure tool's input: read the VTP with VTK-free parsing
-    # is not worth it here; ask vesselmesh centerline's JSON instead.
+    # The median of the branches' mean radii, from vesselmesh centerline's JSON.
     out = subprocess.run([vm, "centerline", surface, "--units", units, "-o", f"{work}/c2.vtp", "--json", "-q"],
                          check=True, capture_output=True, text=True).stdout
     radii = [b["mean_radius"] for b in json.loads(out)["branches"]]

@@ -68,7 +68,8 @@ Command add_centerline_command(CLI::App& parent) {
       "VMTK), split into branches at the bifurcations; each point carries the maximal inscribed sphere radius. "
       "Optionally the distance map: each surface point's distance to the centerline and the radius there");
   struct Options {
-    std::string input, output, distance_map, units;
+    SurfaceInput surface;
+    std::string output, distance_map;
     std::optional<int> inlet;
     std::string source;
     std::vector<std::string> targets;
@@ -76,11 +77,10 @@ Command add_centerline_command(CLI::App& parent) {
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
-  app->add_option("SURFACE", o->input, "Surface file: .stl, .vtp, .vtu, .ply, .obj, .msh, .mesh")->required();
+  add_surface_input(*app, o->surface);
   app->add_option("-o,--output", o->output, "Centerlines .vtp: one polyline per branch, point data radius, cell data branch")
       ->required();
   app->add_option("--distance-map", o->distance_map, "Also write the surface (.vtp) with point data distance and radius");
-  app->add_option("--units", o->units, "Length unit of the file: um, mm, cm or m (default mm); results are in mm");
   app->add_option("--inlet", o->inlet, "The end the centerlines start from, by its number in 'vesselmesh info' (default 0, the largest)");
   app->add_option("--source-point", o->source, "Start here instead (x,y,z in mm, after --units)");
   app->add_option("--target-point", o->targets, "End here instead of at the outlets (x,y,z in mm; repeat for several)");
@@ -94,16 +94,13 @@ Command add_centerline_command(CLI::App& parent) {
             if (!o->source.empty()) options.source = parse_point(o->source, "--source-point");
             for (const std::string& t : o->targets) options.targets.push_back(parse_point(t, "--target-point"));
             TerminalReporter reporter(o->common.quiet);
-            SurfaceCheckOptions check;
-            if (!o->units.empty()) check.units = o->units;
-            check.clean.find_self_intersections = false;
-            const CheckedSurface surface = check_surface(o->input, check, reporter);
+            const CheckedSurface surface = read_surface_input(o->surface, reporter);
             const auto start = std::chrono::steady_clock::now();
             centerline::Centerlines c;
             try {
               c = centerline::extract(surface.file.mesh, options, reporter);
             } catch (const InputError& e) {
-              throw InputError(fmt::format("{}: {}", o->input, e.what()));
+              throw InputError(fmt::format("{}: {}", o->surface.path, e.what()));
             }
             write_centerlines(o->output, c);
             if (!o->distance_map.empty()) write_distance_map(o->distance_map, surface.file.mesh, c);
@@ -112,7 +109,7 @@ Command add_centerline_command(CLI::App& parent) {
               Json branches = Json::array(), bifurcations = Json::array();
               for (const auto& b : c.branches) branches.push_back(branch_json(b));
               for (const Vec3& p : c.bifurcations) bifurcations.push_back(to_json(p));
-              Json json = {{"input", o->input}, {"output", o->output}, {"units", "mm"}, {"inlet", c.inlet},
+              Json json = {{"input", o->surface.path}, {"output", o->output}, {"units", "mm"}, {"inlet", c.inlet},
                            {"outlets", c.outlets}, {"branches", branches}, {"bifurcations", bifurcations},
                            {"seconds", round_to(seconds, 4)}};
               if (!o->distance_map.empty()) json["distance_map"] = o->distance_map;

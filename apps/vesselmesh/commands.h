@@ -52,6 +52,18 @@ struct CheckedSurface {
 
 CheckedSurface check_surface(const std::string& path, const SurfaceCheckOptions& options,
                              const Reporter& reporter);
+
+// The input surface of the stage commands (curvature, centerline, size, remesh): SURFACE,
+// --units and --label-array; read, repaired and described as `info` does, without its
+// self-intersection search.
+struct SurfaceInput {
+  std::string path, units, label_array;
+};
+void add_surface_input(CLI::App& app, SurfaceInput& input);
+CheckedSurface read_surface_input(const SurfaceInput& input, const Reporter& reporter);
+
+// Point data `metric`: per point its six entries xx, xy, xz, yy, yz, zz.
+Field metric_field(const std::vector<Sym3>& metric);
 Json describe(const CheckedSurface& surface);
 std::string describe_as_text(const CheckedSurface& surface);
 // The repaired surface with the input's point and cell data carried along.

@@ -40,15 +40,15 @@ Command add_curvature_command(CLI::App& parent) {
       "writes a VTP with point data k1, k2 (k1 <= k2), mean_curvature, gauss_curvature, dir1, dir2, normal, in 1/mm. "
       "Positive where the outward surface is convex: on a pipe of radius R, k2 = 1/R around it and k1 = 0 along it");
   struct Options {
-    std::string input, output, units, normals = "fit";
+    SurfaceInput surface;
+    std::string output, normals = "fit";
     int smooth = 0;
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
-  app->add_option("SURFACE", o->input, "Surface file: .stl, .vtp, .vtu, .ply, .obj, .msh, .mesh")->required();
+  add_surface_input(*app, o->surface);
   app->add_option("-o,--output", o->output, "Output .vtp (the repaired surface in mm with the curvature arrays)")
       ->required();
-  app->add_option("--units", o->units, "Length unit of the file: um, mm, cm or m (default mm)");
   app->add_option("--smooth", o->smooth, "Passes of area-weighted smoothing of the curvature tensor (default 0)")
       ->check(CLI::NonNegativeNumber);
   app->add_option("--normals", o->normals,
@@ -59,10 +59,7 @@ Command add_curvature_command(CLI::App& parent) {
             if (io::surface_format(o->output) != io::SurfaceFormat::vtp)
               throw OptionError(fmt::format("{}: the curvature is written as VTP point data: use a .vtp name", o->output));
             TerminalReporter reporter(o->common.quiet);
-            SurfaceCheckOptions check;
-            if (!o->units.empty()) check.units = o->units;
-            check.clean.find_self_intersections = false;  // not needed here; `info` reports them
-            const CheckedSurface surface = check_surface(o->input, check, reporter);
+            const CheckedSurface surface = read_surface_input(o->surface, reporter);
             const std::map<std::string, analysis::NormalMethod> methods = {
                 {"fit", analysis::NormalMethod::quadric_fit}, {"max", analysis::NormalMethod::max},
                 {"angle", analysis::NormalMethod::angle}, {"area", analysis::NormalMethod::area}};
@@ -74,7 +71,7 @@ Command add_curvature_command(CLI::App& parent) {
             std::vector<double> mean(c.size()), gauss(c.size());
             for (int v = 0; v < c.size(); ++v) mean[v] = c.mean(v), gauss[v] = c.gauss(v);
             if (o->common.json) {
-              print_json({{"input", o->input},
+              print_json({{"input", o->surface.path},
                           {"output", o->output},
                           {"units", "mm"},
                           {"curvature_units", "1/mm"},

@@ -55,6 +55,28 @@ Json ends_json(const std::vector<analysis::OpenEnd>& ends) {
 
 }  // namespace
 
+void add_surface_input(CLI::App& app, SurfaceInput& input) {
+  app.add_option("SURFACE", input.path, "Surface file: .stl, .vtp, .vtu, .ply, .obj, .msh, .mesh")->required();
+  app.add_option("--units", input.units, "Length unit of the file: um, mm, cm or m (default mm); results are in mm");
+  app.add_option("--label-array", input.label_array,
+                 "Integer cell array holding face labels (default: ModelFaceID, tag, CellEntityIds, gmsh:physical)");
+}
+
+CheckedSurface read_surface_input(const SurfaceInput& input, const Reporter& reporter) {
+  SurfaceCheckOptions check;
+  if (!input.units.empty()) check.units = input.units;
+  check.label_array = input.label_array;
+  check.clean.find_self_intersections = false;  // `info` reports them; no stage needs the search
+  return check_surface(input.path, check, reporter);
+}
+
+Field metric_field(const std::vector<Sym3>& metric) {
+  Field field{.name = "metric", .components = 6, .values = {}};
+  field.values.reserve(6 * metric.size());
+  for (const Sym3& m : metric) field.values.insert(field.values.end(), m.v.begin(), m.v.end());
+  return field;
+}
+
 Json describe(const CheckedSurface& s) {
   const mesh::Statistics& st = s.statistics;
   Json json;

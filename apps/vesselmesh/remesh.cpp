@@ -96,9 +96,7 @@ void write_remeshed(const std::string& path, const remesh::RemeshResult& result)
     quality[t] = sizing::triangle_quality(result.mesh.points[f[0]], result.mesh.points[f[1]], result.mesh.points[f[2]],
                                           result.metric[f[0]], result.metric[f[1]], result.metric[f[2]]);
   }
-  Field metric_field{.name = "metric", .components = 6, .values = {}};
-  for (const Sym3& m : result.metric) metric_field.values.insert(metric_field.values.end(), m.v.begin(), m.v.end());
-  io::write_surface(path, result.mesh, {metric_field}, {Field::scalar("quality", quality)});
+  io::write_surface(path, result.mesh, {metric_field(result.metric)}, {Field::scalar("quality", quality)});
 }
 
 Command add_remesh_command(CLI::App& parent) {
@@ -109,20 +107,17 @@ Command add_remesh_command(CLI::App& parent) {
       "borders are kept as feature lines; labels follow their triangles. The distance from the input stays below "
       "--hausdorff (mm) and --hausdorff-relative times the local vessel radius");
   struct Options {
-    std::string input, output, units, metric;
+    SurfaceInput surface;
+    std::string output, metric;
     SizingArgs sizing;
     remesh::RemeshOptions remesh;
-    std::string label_array;
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
-  app->add_option("SURFACE", o->input, "Surface file: .stl, .vtp, .vtu, .ply, .obj, .msh, .mesh")->required();
+  add_surface_input(*app, o->surface);
   app->add_option("-o,--output", o->output, "Output surface: .stl, .vtp (with point data metric, cell data tag and "
                                             "quality), .msh or .mesh (Medit)")
       ->required();
-  app->add_option("--units", o->units, "Length unit of the file: um, mm, cm or m (default mm)");
-  app->add_option("--label-array", o->label_array,
-                  "Integer cell array holding face labels (default: ModelFaceID, tag, CellEntityIds, gmsh:physical)");
   add_sizing_options(*app, o->sizing, false);
   app->add_option("--metric", o->metric,
                   "Size field to adapt to instead of --size: a .vtp with point data metric or size, as 'vesselmesh size' "
@@ -149,11 +144,7 @@ Command add_remesh_command(CLI::App& parent) {
             if (o->metric.empty() == o->sizing.kind.empty())
               throw OptionError("give the size field either by --size KIND (with sizing options) or by --metric FIELD.vtp");
             TerminalReporter reporter(o->common.quiet);
-            SurfaceCheckOptions check;
-            if (!o->units.empty()) check.units = o->units;
-            check.label_array = o->label_array;
-            check.clean.find_self_intersections = false;
-            const CheckedSurface surface = check_surface(o->input, check, reporter);
+            const CheckedSurface surface = read_surface_input(o->surface, reporter);
             const TriMesh& input = surface.file.mesh;
             const auto start = std::chrono::steady_clock::now();
 
@@ -192,7 +183,7 @@ Command add_remesh_command(CLI::App& parent) {
 
             if (o->common.json) {
               Json json = remesh_json(s);
-              json["input"] = o->input;
+              json["input"] = o->surface.path;
               json["output"] = o->output;
               json["units"] = "mm";
               json["size"] = sized ? Json(sizing::size_kind_name(sized->field.kind)) : Json("metric file");

@@ -61,10 +61,7 @@ SizedSurface size_surface(const CheckedSurface& surface, const SizingArgs& args,
 
 std::vector<Field> size_fields(const SizedSurface& sized) {
   const sizing::SizeField& field = sized.field;
-  Field metric{.name = "metric", .components = 6, .values = {}};
-  metric.values.reserve(field.metric.size() * 6);
-  for (const Sym3& m : field.metric) metric.values.insert(metric.values.end(), m.v.begin(), m.v.end());
-  std::vector<Field> out = {Field::scalar("size", field.size), metric};
+  std::vector<Field> out = {Field::scalar("size", field.size), metric_field(field.metric)};
   if (sized.distance) out.push_back(Field::scalar("radius", sized.distance->radius));
   return out;
 }
@@ -89,14 +86,14 @@ Command add_size_command(CLI::App& parent) {
               "graded, optionally scaled to a triangle count. Writes point data size (mm), metric (xx,xy,xz,yy,yz,zz) "
               "and, when the surface has ends, radius (mm, the distance map's, for the remesher's distance bound)");
   struct Options {
-    std::string input, output, units, medit;
+    SurfaceInput surface;
+    std::string output, medit;
     SizingArgs sizing;
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
-  app->add_option("SURFACE", o->input, "Surface file: .stl, .vtp, .vtu, .ply, .obj, .msh, .mesh")->required();
+  add_surface_input(*app, o->surface);
   app->add_option("-o,--output", o->output, "Output .vtp with point data size and metric")->required();
-  app->add_option("--units", o->units, "Length unit of the file: um, mm, cm or m (default mm)");
   add_sizing_options(*app, o->sizing);
   app->add_option("--medit", o->medit,
                   "Also write BASE.mesh (the checked surface) and BASE.sol (the metric), Medit files for MMG's mmgs");
@@ -105,10 +102,7 @@ Command add_size_command(CLI::App& parent) {
             if (io::surface_format(o->output) != io::SurfaceFormat::vtp)
               throw OptionError(fmt::format("{}: the size field is written as VTP point data: use a .vtp name", o->output));
             TerminalReporter reporter(o->common.quiet);
-            SurfaceCheckOptions check;
-            if (!o->units.empty()) check.units = o->units;
-            check.clean.find_self_intersections = false;
-            const CheckedSurface surface = check_surface(o->input, check, reporter);
+            const CheckedSurface surface = read_surface_input(o->surface, reporter);
             const auto start = std::chrono::steady_clock::now();
             const SizedSurface sized = size_surface(surface, o->sizing, reporter);
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -119,7 +113,7 @@ Command add_size_command(CLI::App& parent) {
             }
             if (o->common.json) {
               Json json = size_json(sized.field);
-              json["input"] = o->input;
+              json["input"] = o->surface.path;
               json["output"] = o->output;
               json["units"] = "mm";
               json["points"] = surface.file.mesh.num_points();

@@ -27,8 +27,7 @@ const double kFlipBendCos = std::cos(20.0 * std::numbers::pi / 180.0);
 class Remesher {
  public:
   Remesher(SurfaceModel& model, const RemeshOptions& options, std::vector<double> bound)
-      : model_(model), m_(model), o_(options), bound_(std::move(bound)),
-        smallest_bound_(bound_.empty() ? 0.0 : *std::min_element(bound_.begin(), bound_.end())) {}
+      : model_(model), m_(model), o_(options), bound_(std::move(bound)) {}
 
   void run(const Reporter& reporter);
   DynamicMesh& mesh() { return m_; }
@@ -40,7 +39,12 @@ class Remesher {
   }
   Vec3 reference_normal(const Triangle& f, const Vec3& fallback) const;
   bool valid(const Triangle& f, const Vec3& fallback) const;
-  double deviation(const Triangle& f) const;
+  // How far a triangle strays from the input (its centroid and edge midpoints; the corners are
+  // on it) and how far it may (the bound at the input triangle under its centroid).
+  struct Stray {
+    double distance, allowed;
+  };
+  Stray stray(const Triangle& f) const;
   // Within the distance bound, once the final refinement has enforced it (before, the metric
   // keeps the mesh close, and checking every operation would slow them all).
   bool close_enough(const Triangle& f) const { return !keep_bound_ || !too_far(f); }
@@ -50,15 +54,18 @@ class Remesher {
   bool collapse(int a, int b);  // removes a
   bool flip(int a, int b);
   bool move(int v);
-  std::optional<Projection> move_target(int v);  // tries the position, then puts it back
+  // `before`: the worst quality of v's ball now. Tries the position, then puts it back.
+  std::optional<Projection> move_target(int v, double before);
 
   std::vector<std::array<int, 2>> edges() const;
   int split_pass();
   int collapse_pass();
   int flip_pass();
   int move_pass();
-  double allowed_deviation(const Triangle& f) const;
-  bool too_far(const Triangle& f) const;
+  bool too_far(const Triangle& f) const {
+    const Stray s = stray(f);
+    return s.distance > s.allowed;
+  }
   void adapt_passes(const Reporter& reporter, double from, double to);
   int tighten_metric();
   void bound_hausdorff();
@@ -67,7 +74,6 @@ class Remesher {
   DynamicMesh m_;
   const RemeshOptions& o_;
   std::vector<double> bound_;  // per input point: the largest distance allowed there (inf: none)
-  double smallest_bound_ = 0.0;
   bool keep_bound_ = false;
 };
 
@@ -94,14 +100,16 @@ bool Remesher::valid(const Triangle& f, const Vec3& fallback) const {
   return reference.squaredNorm() == 0.0 || n.dot(reference) > kMinNormalCos * length;
 }
 
-// Largest distance from the input of the centroid and edge midpoints (the corners are on it).
-double Remesher::deviation(const Triangle& f) const {
+Remesher::Stray Remesher::stray(const Triangle& f) const {
   const Vec3 &a = m_.position[f[0]], &b = m_.position[f[1]], &c = m_.position[f[2]];
-  double d = model_.distance((a + b + c) / 3.0, m_.hint[f[0]]);
+  const Vec3 centroid = (a + b + c) / 3.0;
+  const SurfaceModel::Nearest below = model_.nearest(centroid, m_.hint[f[0]]);
+  double d = (below.point - centroid).norm();
   d = std::max(d, model_.distance(0.5 * (a + b), m_.hint[f[0]]));
   d = std::max(d, model_.distance(0.5 * (b + c), m_.hint[f[1]]));
   d = std::max(d, model_.distance(0.5 * (c + a), m_.hint[f[2]]));
-  return d;
+  const Triangle& g = model_.input().triangles[below.triangle];
+  return {d, std::min({bound_[g[0]], bound_[g[1]], bound_[g[2]]})};
 }
 
 double Remesher::worst_quality(const std::vector<int>& triangles) const {
@@ -222,7 +230,7 @@ bool Remesher::flip(int a, int b) {
 // triangles (the apex that makes each an equilateral triangle of the metric over its far
 // edge), in its tangent plane; for a curve point, halfway to the middle of its two curve
 // neighbours. Then back onto the input.
-std::optional<Projection> Remesher::move_target(int v) {
+std::optional<Projection> Remesher::move_target(int v, double before) {
   const Vec3& p = m_.position[v];
   if (m_.kind[v] == PointKind::curve) {
     std::vector<int> along;
@@ -256,7 +264,6 @@ std::optional<Projection> Remesher::move_target(int v) {
   const Vec3& n = m_.normal[v];
   target -= (target - p).dot(n) * n;
   // Not worth projecting when, even in the tangent plane, the ball would not get better.
-  const double before = worst_quality(m_.ball[v]);
   const Vec3 kept = p;
   m_.position[v] = target;
   const double after = worst_quality(m_.ball[v]);
@@ -267,10 +274,10 @@ std::optional<Projection> Remesher::move_target(int v) {
 
 bool Remesher::move(int v) {
   if (m_.kind[v] == PointKind::corner || m_.ball[v].empty()) return false;
-  const std::optional<Projection> target = move_target(v);
-  if (!target) return false;
   const std::vector<int>& around = m_.ball[v];
   const double before = worst_quality(around);
+  const std::optional<Projection> target = move_target(v, before);
+  if (!target) return false;
   std::vector<Vec3> old_normals;
   for (int t : around) old_normals.push_back(face_normal(m_.triangles[t]));
   const Vec3 old_position = m_.position[v], old_normal = m_.normal[v];
@@ -361,21 +368,6 @@ int Remesher::move_pass() {
   return done;
 }
 
-// The largest distance a triangle may keep from the input: the bound at the input triangle
-// nearest its centroid.
-double Remesher::allowed_deviation(const Triangle& f) const {
-  const Projection p = model_.project((m_.position[f[0]] + m_.position[f[1]] + m_.position[f[2]]) / 3.0, m_.hint[f[0]]);
-  const Triangle& g = model_.input().triangles[p.triangle];
-  return std::min({bound_[g[0]], bound_[g[1]], bound_[g[2]]});
-}
-
-// Whether a triangle strays farther from the input than allowed there (the deviation first:
-// below the smallest bound anywhere, the local bound need not be looked up).
-bool Remesher::too_far(const Triangle& f) const {
-  const double d = deviation(f);
-  return d > smallest_bound_ && d > allowed_deviation(f);
-}
-
 // Splits the longest edge of every triangle farther from the input than allowed. Splits and
 // flips only add triangles (new indices) and leave the others as they are, so each round looks
 // at the triangles the last one made.
@@ -432,15 +424,13 @@ int Remesher::tighten_metric() {
   for (size_t t = 0; t < m_.triangles.size(); ++t) {
     if (!m_.triangle_alive[t]) continue;
     const Triangle& f = m_.triangles[t];
-    const double d = deviation(f);
-    if (!(d > smallest_bound_)) continue;
-    const double allowed = allowed_deviation(f);
-    if (!(d > allowed)) continue;
+    const Stray s = stray(f);
+    if (!(s.distance > s.allowed)) continue;
     ++count;
-    const double grow = std::min(4.0, d / (0.5 * allowed));
+    const double grow = std::min(4.0, s.distance / (0.5 * s.allowed));
     const Vec3 &a = m_.position[f[0]], &b = m_.position[f[1]], &c = m_.position[f[2]];
     for (const Vec3& p : {a, b, c, Vec3((a + b + c) / 3.0), Vec3(0.5 * (a + b)), Vec3(0.5 * (b + c)), Vec3(0.5 * (c + a))})
-      for (int v : model_.input().triangles[model_.project(p, m_.hint[f[0]]).triangle]) factor[v] = std::max(factor[v], grow);
+      for (int v : model_.input().triangles[model_.nearest(p, m_.hint[f[0]]).triangle]) factor[v] = std::max(factor[v], grow);
   }
   if (count == 0) return 0;
   for (size_t v = 0; v < factor.size(); ++v)
@@ -509,13 +499,14 @@ RemeshStats measure(const TriMesh& mesh, const std::vector<Sym3>& metric, const 
     // Distance from the input: the centroid and the edge midpoints (the corners lie on it).
     const Vec3 &a = mesh.points[f[0]], &b = mesh.points[f[1]], &c = mesh.points[f[2]];
     const int hint = hints ? (*hints)[f[0]] : -1;
-    double d = 0.0;
-    for (const Vec3& p : {Vec3((a + b + c) / 3.0), Vec3(0.5 * (a + b)), Vec3(0.5 * (b + c)), Vec3(0.5 * (c + a))})
+    const Vec3 centroid = (a + b + c) / 3.0;
+    const SurfaceModel::Nearest below = model.nearest(centroid, hint);  // its triangle: the local radius
+    double d = (below.point - centroid).norm();
+    for (const Vec3& p : {Vec3(0.5 * (a + b)), Vec3(0.5 * (b + c)), Vec3(0.5 * (c + a))})
       d = std::max(d, model.distance(p, hint));
     s.hausdorff = std::max(s.hausdorff, d);
     if (input_radius) {
-      const Projection p = model.project((a + b + c) / 3.0, hint);
-      const Triangle& g = in.triangles[p.triangle];
+      const Triangle& g = in.triangles[below.triangle];
       const double r = ((*input_radius)[g[0]] + (*input_radius)[g[1]] + (*input_radius)[g[2]]) / 3.0;
       if (r > 0.0) s.hausdorff_relative = std::max(s.hausdorff_relative, d / r);
     }

@@ -96,12 +96,8 @@ Projection SurfaceModel::finish(const Vec3& point, int triangle) const {
   return out;
 }
 
-Projection SurfaceModel::project(const Vec3& p) const {
-  const mesh::SurfaceLocator::Hit hit = locator_.closest(p);
-  return finish(hit.point, hit.triangle);
-}
 
-std::pair<Vec3, int> SurfaceModel::walk(const Vec3& p, int hint) const {
+SurfaceModel::Nearest SurfaceModel::walk(const Vec3& p, int hint) const {
   constexpr int kMaxVisits = 256;
   auto closest = [&](int t) {
     const Triangle& f = input_.triangles[t];
@@ -148,16 +144,18 @@ std::pair<Vec3, int> SurfaceModel::walk(const Vec3& p, int hint) const {
   return {best, best_t};
 }
 
-Projection SurfaceModel::project(const Vec3& p, int hint) const {
-  if (hint < 0) return project(p);
-  const auto [point, triangle] = walk(p, hint);
-  return triangle >= 0 ? finish(point, triangle) : project(p);
+SurfaceModel::Nearest SurfaceModel::nearest(const Vec3& p, int hint) const {
+  if (hint >= 0) {
+    const Nearest local = walk(p, hint);
+    if (local.triangle >= 0) return local;
+  }
+  const mesh::SurfaceLocator::Hit hit = locator_.closest(p);
+  return {hit.point, hit.triangle};
 }
 
-double SurfaceModel::distance(const Vec3& p, int hint) const {
-  if (hint < 0) return distance(p);
-  const auto [point, triangle] = walk(p, hint);
-  return triangle >= 0 ? (point - p).norm() : distance(p);
+Projection SurfaceModel::project(const Vec3& p, int hint) const {
+  const Nearest n = nearest(p, hint);
+  return finish(n.point, n.triangle);
 }
 
 Projection SurfaceModel::project_on_curve(int curve, const Vec3& p) const {
@@ -171,7 +169,5 @@ Projection SurfaceModel::project_on_curve(int curve, const Vec3& p) const {
   out.metric = sizing::interpolate_logs(logs, weights, 2);
   return out;
 }
-
-double SurfaceModel::distance(const Vec3& p) const { return locator_.closest(p).distance; }
 
 }  // namespace vesselmesh::remesh

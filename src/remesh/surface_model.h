@@ -46,16 +46,20 @@ class SurfaceModel {
   // Multiplies the metric at an input point by `factor` (> 1: sizes shrink by its square root).
   void refine_metric(int input_point, double factor);
 
-  // The closest point of the input (AABB tree).
-  Projection project(const Vec3& p) const;
-  // The closest point near input triangle `hint` (p lies near the surface there): a descent
-  // over triangles sharing a point with the best one so far, then the global query when it
-  // wanders too far. A local closest point: on a thin vessel it stays on the same wall.
-  Projection project(const Vec3& p, int hint) const;
+  // The closest point of the input (AABB tree); with a `hint`, the closest point near input
+  // triangle `hint` (p lies near the surface there): a descent over triangles sharing a point
+  // with the best one so far, then the global query when it wanders too far. A local closest
+  // point: on a thin vessel it stays on the same wall.
+  Projection project(const Vec3& p, int hint = -1) const;
   Projection project_on_curve(int curve, const Vec3& p) const;
-  // Distance from p to the input surface (global; with a hint, local as above: never smaller).
-  double distance(const Vec3& p) const;
-  double distance(const Vec3& p, int hint) const;
+  // Only the closest point and its input triangle (no normal, no metric), found as project()
+  // finds it; and the distance to it (global without a hint; local with one: never smaller).
+  struct Nearest {
+    Vec3 point;
+    int triangle;
+  };
+  Nearest nearest(const Vec3& p, int hint = -1) const;
+  double distance(const Vec3& p, int hint = -1) const { return (nearest(p, hint).point - p).norm(); }
   // An input triangle at input point v.
   int triangle_at(int input_point) const { return incidence_.triangles[incidence_.offsets[input_point]]; }
 
@@ -63,8 +67,8 @@ class SurfaceModel {
   struct Curve;
   Sym3 metric_at(int triangle, const Vec3& barycentric) const;
   Projection finish(const Vec3& point, int triangle) const;
-  // The local closest point: (point, triangle), or triangle -1 when the walk gave up.
-  std::pair<Vec3, int> walk(const Vec3& p, int hint) const;
+  // The local closest point, or triangle -1 when the walk gave up.
+  Nearest walk(const Vec3& p, int hint) const;
 
   const TriMesh& input_;
   std::vector<Sym3> metrics_, logs_;

@@ -318,6 +318,9 @@ TEST(Cli, RemeshWritesTheSurfaceAndTheContractFigures) {
   const RunResult other = run({"remesh", tmp.path("s.stl"), "--metric", tmp.path("f.vtp"), "-o", tmp.path("x.vtp")});
   EXPECT_EQ(other.code, 2);
   EXPECT_NE(last_line(other.err).find("another surface"), std::string::npos) << other.err;
+  const RunResult no_metric = run({"remesh", tmp.path("p.stl"), "--metric", tmp.path("p.stl"), "-o", tmp.path("x.vtp")});
+  EXPECT_EQ(no_metric.code, 2);
+  EXPECT_NE(last_line(no_metric.err).find("no point data 'metric'"), std::string::npos) << no_metric.err;
   EXPECT_EQ(tmp.files(), (std::vector<std::string>{"f.mesh", "f.sol", "f.vtp", "m.mesh", "p.stl", "r.vtp", "s.stl"}));
 }
 
