@@ -56,4 +56,10 @@ TriMesh tetrahedron(const Vec3& offset, double size) {
   return m;
 }
 
+double enclosed_volume(const std::vector<Vec3>& points, const std::vector<Triangle>& faces) {
+  double v = 0.0;
+  for (const Triangle& f : faces) v += points[f[0]].dot(points[f[1]].cross(points[f[2]])) / 6.0;
+  return v;
+}
+
 }  // namespace vesselmesh::test

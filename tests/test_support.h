@@ -40,6 +40,9 @@ std::string test_name(const std::string& text);
 // Writes bytes to a file.
 void write_bytes(const std::string& path, const std::string& bytes);
 
+// The volume a closed, outward triangle surface encloses (divergence theorem).
+double enclosed_volume(const std::vector<Vec3>& points, const std::vector<Triangle>& faces);
+
 // A regular tetrahedron, outward, 4 points and 4 triangles.
 TriMesh tetrahedron(const Vec3& offset = Vec3::Zero(), double size = 1.0);
 

@@ -32,6 +32,8 @@ Command add_curvature_command(CLI::App& parent);
 Command add_centerline_command(CLI::App& parent);
 Command add_size_command(CLI::App& parent);
 Command add_remesh_command(CLI::App& parent);
+Command add_volume_command(CLI::App& parent);
+Command add_quality_command(CLI::App& parent);
 Command add_synth_command(CLI::App& parent);
 Command add_demo_command(CLI::App& parent);
 

@@ -13,7 +13,10 @@
 
 namespace vesselmesh::io {
 namespace {
-constexpr int kTriangle3 = 2;  // Gmsh element type of the 3-node triangle
+constexpr int kTriangle3 = 2;  // Gmsh element types
+constexpr int kTetrahedron4 = 4, kPrism6 = 6;
+// TetMesh prisms have the wall triangle facing away from the top; Gmsh's face toward it.
+Prism gmsh_prism(const Prism& p) { return {p[0], p[2], p[1], p[3], p[5], p[4]}; }
 }
 
 void write_msh(const std::string& path, const TriMesh& mesh,
@@ -110,6 +113,130 @@ TriMesh read_msh_surface(const std::string& path, std::map<int, std::string>* la
   });
   if (mesh.triangles.empty())
     throw InputError(fmt::format("{}: the MSH file has no 3-node triangles (a surface is needed)", path));
+  return mesh;
+}
+
+void write_msh(const std::string& path, const TetMesh& mesh) {
+  GmshSession session;
+  call_gmsh(path, [&] {
+    gmsh::model::add("vesselmesh");
+    std::vector<std::size_t> node_tags(mesh.points.size());
+    std::vector<double> coords;
+    coords.reserve(3 * mesh.points.size());
+    for (size_t i = 0; i < mesh.points.size(); ++i) {
+      node_tags[i] = i + 1;
+      coords.insert(coords.end(), {mesh.points[i].x(), mesh.points[i].y(), mesh.points[i].z()});
+    }
+    // Surfaces first (entity k + 1 for the k-th tag), then the volume bounded by them.
+    std::vector<int> tags;
+    for (int tag : mesh.boundary_tags) tags.push_back(tag);
+    std::sort(tags.begin(), tags.end());
+    tags.erase(std::unique(tags.begin(), tags.end()), tags.end());
+    std::size_t element = 1;
+    std::vector<int> surfaces;
+    for (size_t k = 0; k < tags.size(); ++k) {
+      const int entity = static_cast<int>(k) + 1;
+      surfaces.push_back(entity);
+      gmsh::model::addDiscreteEntity(2, entity);
+      if (k == 0) gmsh::model::mesh::addNodes(2, entity, node_tags, coords);
+      std::vector<std::size_t> element_tags, element_nodes;
+      for (size_t t = 0; t < mesh.boundary.size(); ++t) {
+        if (mesh.boundary_tags[t] != tags[k]) continue;
+        element_tags.push_back(element++);
+        for (int v : mesh.boundary[t]) element_nodes.push_back(static_cast<std::size_t>(v) + 1);
+      }
+      gmsh::model::mesh::addElementsByType(entity, kTriangle3, element_tags, element_nodes);
+      gmsh::model::addPhysicalGroup(2, {entity}, tags[k]);
+      const auto name = mesh.tag_names.find(tags[k]);
+      gmsh::model::setPhysicalName(2, tags[k], name != mesh.tag_names.end() ? name->second : fmt::format("tag_{}", tags[k]));
+    }
+    gmsh::model::addDiscreteEntity(3, 1, surfaces);
+    if (tags.empty()) gmsh::model::mesh::addNodes(3, 1, node_tags, coords);
+    std::vector<std::size_t> element_tags, element_nodes;
+    for (const Tet& t : mesh.tets) {
+      element_tags.push_back(element++);
+      for (int v : t) element_nodes.push_back(static_cast<std::size_t>(v) + 1);
+    }
+    if (!element_tags.empty()) gmsh::model::mesh::addElementsByType(1, kTetrahedron4, element_tags, element_nodes);
+    element_tags.clear();
+    element_nodes.clear();
+    for (const Prism& p : mesh.prisms) {
+      element_tags.push_back(element++);
+      for (int v : gmsh_prism(p)) element_nodes.push_back(static_cast<std::size_t>(v) + 1);
+    }
+    if (!element_tags.empty()) gmsh::model::mesh::addElementsByType(1, kPrism6, element_tags, element_nodes);
+    gmsh::model::addPhysicalGroup(3, {1}, mesh.volume_tag);
+    gmsh::model::setPhysicalName(3, mesh.volume_tag, mesh.volume_name);
+    gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+    gmsh::option::setNumber("Mesh.Binary", 0);
+    gmsh::option::setNumber("Mesh.SaveAll", 0);
+    write_atomically(path, [&](const std::string& temporary) { gmsh::write(temporary); });
+  });
+}
+
+TetMesh read_msh_volume(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(fmt::format("{}: cannot open: no such file", path));
+  GmshSession session;
+  TetMesh mesh;
+  call_gmsh(path, [&] {
+    gmsh::open(path);
+    std::vector<std::size_t> node_tags;
+    std::vector<double> coords, parametric;
+    gmsh::model::mesh::getNodes(node_tags, coords, parametric, -1, -1, false, false);
+    std::unordered_map<std::size_t, int> index_of;
+    for (size_t i = 0; i < node_tags.size(); ++i) {
+      index_of.emplace(node_tags[i], static_cast<int>(i));
+      mesh.points.emplace_back(coords[3 * i], coords[3 * i + 1], coords[3 * i + 2]);
+    }
+    auto corners = [&](const std::vector<std::size_t>& nodes, size_t e, int count, int* out) {
+      for (int c = 0; c < count; ++c) {
+        const auto it = index_of.find(nodes[count * e + c]);
+        if (it == index_of.end())
+          throw InputError(fmt::format("{}: an element uses node {}, which the file does not define", path, nodes[count * e + c]));
+        out[c] = it->second;
+      }
+    };
+    gmsh::vectorpair entities;
+    gmsh::model::getEntities(entities, 3);
+    for (const auto& [dim, entity] : entities) {
+      std::vector<int> physicals;
+      gmsh::model::getPhysicalGroupsForEntity(dim, entity, physicals);
+      if (!physicals.empty()) {
+        mesh.volume_tag = physicals.front();
+        gmsh::model::getPhysicalName(3, physicals.front(), mesh.volume_name);
+      }
+      std::vector<std::size_t> tags, nodes;
+      gmsh::model::mesh::getElementsByType(kTetrahedron4, tags, nodes, entity);
+      for (size_t e = 0; e < tags.size(); ++e) corners(nodes, e, 4, mesh.tets.emplace_back().data());
+      tags.clear();  // Gmsh fills vectors that are not empty in place, without resizing them
+      nodes.clear();
+      gmsh::model::mesh::getElementsByType(kPrism6, tags, nodes, entity);
+      for (size_t e = 0; e < tags.size(); ++e) {
+        Prism p;
+        corners(nodes, e, 6, p.data());
+        mesh.prisms.push_back(gmsh_prism(p));
+      }
+    }
+    gmsh::model::getEntities(entities, 2);
+    for (const auto& [dim, entity] : entities) {
+      std::vector<int> physicals;
+      gmsh::model::getPhysicalGroupsForEntity(dim, entity, physicals);
+      const int tag = physicals.empty() ? entity : physicals.front();
+      std::string name;
+      if (!physicals.empty()) gmsh::model::getPhysicalName(2, tag, name);
+      mesh.tag_names[tag] = name.empty() ? fmt::format("tag_{}", tag) : name;
+      std::vector<std::size_t> tags, nodes;
+      gmsh::model::mesh::getElementsByType(kTriangle3, tags, nodes, entity);
+      for (size_t e = 0; e < tags.size(); ++e) {
+        corners(nodes, e, 3, mesh.boundary.emplace_back().data());
+        mesh.boundary_tags.push_back(tag);
+      }
+    }
+  });
+  if (mesh.tets.empty() && mesh.prisms.empty())
+    throw InputError(fmt::format("{}: the MSH file has no tetrahedra or prisms (a volume mesh is needed)", path));
   return mesh;
 }
 

@@ -19,7 +19,12 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+#include <vtkCellType.h>
+#include <vtkFieldData.h>
+#include <vtkStringArray.h>
+#include <vtkUnstructuredGrid.h>
 #include <vtkXMLPolyDataWriter.h>
+#include <vtkXMLUnstructuredGridWriter.h>
 
 #include <cmath>
 #include <mutex>
@@ -162,11 +167,12 @@ SurfaceData read_vtk_surface(const std::string& path, VtkFormat format, const st
 
 namespace {
 
-void write_polydata(const std::string& path, vtkPolyData* poly) {
+template <typename Writer>
+void write_dataset(const std::string& path, vtkDataObject* data) {
   write_atomically(path, [&](const std::string& temporary) {
-    vtkNew<vtkXMLPolyDataWriter> writer;
+    vtkNew<Writer> writer;
     writer->SetFileName(temporary.c_str());
-    writer->SetInputData(poly);
+    writer->SetInputData(data);
     writer->SetDataModeToAppended();
     writer->EncodeAppendedDataOff();
     writer->SetCompressorTypeToZLib();
@@ -201,7 +207,7 @@ void write_vtp(const std::string& path, const TriMesh& mesh, const std::vector<F
   if (mesh.has_labels())
     poly->GetCellData()->AddArray(to_vtk_array(Field::labels("tag", mesh.labels), mesh.num_triangles(), path));
   for (const Field& field : cell_data) poly->GetCellData()->AddArray(to_vtk_array(field, mesh.num_triangles(), path));
-  write_polydata(path, poly);
+  write_dataset<vtkXMLPolyDataWriter>(path, poly);
 }
 
 void write_vtp_polylines(const std::string& path, const std::vector<std::vector<Vec3>>& lines,
@@ -221,7 +227,50 @@ void write_vtp_polylines(const std::string& path, const std::vector<std::vector<
     poly->GetPointData()->AddArray(to_vtk_array(field, static_cast<int>(points.size()), path));
   for (const Field& field : cell_data)
     poly->GetCellData()->AddArray(to_vtk_array(field, static_cast<int>(lines.size()), path));
-  write_polydata(path, poly);
+  write_dataset<vtkXMLPolyDataWriter>(path, poly);
+}
+
+void write_vtu(const std::string& path, const TetMesh& mesh, const std::vector<Field>& point_data) {
+  keep_vtk_errors();
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->SetPoints(to_vtk_points(mesh.points));
+  const int cells = mesh.num_tets() + mesh.num_prisms() + static_cast<int>(mesh.boundary.size());
+  grid->Allocate(cells);
+  std::vector<int> tag, layer, column;
+  const bool layers = mesh.has_layers();
+  for (int t = 0; t < mesh.num_tets(); ++t) {
+    const vtkIdType ids[4] = {mesh.tets[t][0], mesh.tets[t][1], mesh.tets[t][2], mesh.tets[t][3]};
+    grid->InsertNextCell(VTK_TETRA, 4, ids);
+    tag.push_back(mesh.volume_tag);
+    if (layers) layer.push_back(mesh.tet_layer.empty() ? 0 : mesh.tet_layer[t]),
+                column.push_back(mesh.tet_column.empty() ? -1 : mesh.tet_column[t]);
+  }
+  for (int p = 0; p < mesh.num_prisms(); ++p) {
+    vtkIdType ids[6];
+    for (int c = 0; c < 6; ++c) ids[c] = mesh.prisms[p][c];
+    grid->InsertNextCell(VTK_WEDGE, 6, ids);
+    tag.push_back(mesh.volume_tag);
+    if (layers) layer.push_back(mesh.prism_layer.empty() ? 1 : mesh.prism_layer[p]),
+                column.push_back(mesh.prism_column.empty() ? -1 : mesh.prism_column[p]);
+  }
+  for (size_t t = 0; t < mesh.boundary.size(); ++t) {
+    const vtkIdType ids[3] = {mesh.boundary[t][0], mesh.boundary[t][1], mesh.boundary[t][2]};
+    grid->InsertNextCell(VTK_TRIANGLE, 3, ids);
+    tag.push_back(mesh.boundary_tags[t]);
+    if (layers) layer.push_back(-1), column.push_back(-1);
+  }
+  for (const Field& field : point_data) grid->GetPointData()->AddArray(to_vtk_array(field, mesh.num_points(), path));
+  grid->GetCellData()->AddArray(to_vtk_array(Field::labels("tag", tag), cells, path));
+  if (layers) {
+    grid->GetCellData()->AddArray(to_vtk_array(Field::labels("layer", layer), cells, path));
+    grid->GetCellData()->AddArray(to_vtk_array(Field::labels("column", column), cells, path));
+  }
+  vtkNew<vtkStringArray> names;
+  names->SetName("tag_names");
+  names->InsertNextValue(fmt::format("{} {}", mesh.volume_tag, mesh.volume_name));
+  for (const auto& [t, name] : mesh.tag_names) names->InsertNextValue(fmt::format("{} {}", t, name));
+  grid->GetFieldData()->AddArray(names);
+  write_dataset<vtkXMLUnstructuredGridWriter>(path, grid);
 }
 
 }  // namespace vesselmesh::io

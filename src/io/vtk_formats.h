@@ -9,6 +9,7 @@
 // ModelFaceID, tag, CellEntityIds, gmsh:physical, becomes TriMesh::labels.
 #pragma once
 
+#include "mesh/tetmesh.h"
 #include "mesh/trimesh.h"
 
 #include <string>
@@ -45,5 +46,12 @@ void write_vtp_polylines(const std::string& path, const std::vector<std::vector<
 // labels (if any) are written as the Int32 cell array `tag`. Field sizes must match.
 void write_vtp(const std::string& path, const TriMesh& mesh,
                const std::vector<Field>& point_data = {}, const std::vector<Field>& cell_data = {});
+
+// A volume mesh as VTK XML UnstructuredGrid, binary and compressed, atomically: tetrahedra,
+// prisms (VTK wedges, TetMesh order) and the boundary triangles, in that order. Cell data
+// `tag` (the volume's tag for volume cells, the boundary tag for triangles), and with layer
+// data `layer` (1..N, 0 interior, -1 boundary) and `column` (the wall triangle's index among
+// the boundary triangles, -1 elsewhere); field data `tag_names` ("<tag> <name>" strings).
+void write_vtu(const std::string& path, const TetMesh& mesh, const std::vector<Field>& point_data = {});
 
 }  // namespace vesselmesh::io

@@ -67,7 +67,7 @@ std::string last_line(const std::string& text) {
 TEST(Cli, HelpListsTheCommands) {
   const RunResult r = run({"--help"});
   EXPECT_EQ(r.code, 0);
-  for (const char* command : {"info", "synth", "demo"}) EXPECT_NE(r.out.find(command), std::string::npos) << command;
+  for (const char* command : {"info", "synth", "demo", "volume", "quality"}) EXPECT_NE(r.out.find(command), std::string::npos) << command;
   const RunResult info = run({"info", "--help"});
   EXPECT_EQ(info.code, 0);
   EXPECT_NE(info.out.find("--units"), std::string::npos);
@@ -324,6 +324,42 @@ TEST(Cli, RemeshWritesTheSurfaceAndTheContractFigures) {
   EXPECT_EQ(tmp.files(), (std::vector<std::string>{"f.mesh", "f.sol", "f.vtp", "m.mesh", "p.stl", "r.vtp", "s.stl"}));
 }
 
+TEST(Cli, VolumeWritesTaggedMeshesThatQualityReadsBack) {
+  test::TemporaryFolder tmp;
+  ASSERT_EQ(run({"synth", "cylinder", "--radius", "2", "--length", "10", "--resolution", "0.4", "-o", tmp.path("p.stl")}).code, 0);
+  const RunResult r = run({"volume", tmp.path("p.stl"), "-o", tmp.path("v.msh"), "--layers", "3", "--end-names",
+                           "in,out", "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = r.json();
+  EXPECT_EQ(j["inverted"].get<int>(), 0);
+  EXPECT_TRUE(j["closed_boundary"].get<bool>());
+  EXPECT_EQ(j["boundary_layer"]["layers_min"].get<int>(), 3);
+  EXPECT_EQ(j["boundary_layer"]["layers_max"].get<int>(), 3);
+  EXPECT_NEAR(j["boundary_layer"]["thickness_over_radius_min"].get<double>(), 0.1, 0.01);
+  ASSERT_EQ(j["ends"].size(), 2u);
+  EXPECT_EQ(j["ends"][0]["name"], "in");
+  EXPECT_EQ(j["units"], "mm");
+  // quality reads the MSH back: the same counts, tags by name.
+  const RunResult q = run({"quality", tmp.path("v.msh"), "--json"});
+  ASSERT_EQ(q.code, 0) << q.err;
+  const Json k = q.json();
+  EXPECT_EQ(k["tetrahedra"], j["tetrahedra"]);
+  EXPECT_EQ(k["boundary_triangles"]["wall"], j["boundary_triangles"]["wall"]);
+  EXPECT_EQ(k["boundary_triangles"]["in"], j["boundary_triangles"]["in"]);
+  EXPECT_TRUE(k["closed_boundary"].get<bool>());
+  // VTU with prisms; bad options and inputs: exit 2 and nothing written.
+  ASSERT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("v.vtu"), "--keep-prisms", "-q"}).code, 0);
+  EXPECT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.vtk")}).code, 2);
+  EXPECT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.msh"), "--inlet", "5"}).code, 2);
+  EXPECT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.msh"), "--thickness-ratio", "0.9"}).code, 2);
+  ASSERT_EQ(run({"synth", "sphere", "--radius", "3", "-o", tmp.path("s.stl")}).code, 0);
+  const RunResult closed = run({"volume", tmp.path("s.stl"), "-o", tmp.path("x.msh")});
+  EXPECT_EQ(closed.code, 2);
+  EXPECT_NE(last_line(closed.err).find("no open or flat-capped end"), std::string::npos) << closed.err;
+  EXPECT_EQ(run({"quality", tmp.path("p.stl")}).code, 2);
+  EXPECT_EQ(tmp.files(), (std::vector<std::string>{"p.stl", "s.stl", "v.msh", "v.vtu"}));
+}
+
 TEST(Cli, DemoWritesItsOutputs) {
   test::TemporaryFolder tmp;
   const RunResult r = run({"demo", "-o", tmp.path("demo"), "--json"});
@@ -335,6 +371,11 @@ TEST(Cli, DemoWritesItsOutputs) {
   EXPECT_TRUE(std::filesystem::exists(tmp.path("demo/curvature.vtp")));
   EXPECT_TRUE(std::filesystem::exists(tmp.path("demo/centerlines.vtp")));
   EXPECT_TRUE(std::filesystem::exists(tmp.path("demo/distance_map.vtp")));
+  // Stage 5: a sound volume mesh.
+  EXPECT_TRUE(std::filesystem::exists(tmp.path("demo/volume.vtu")));
+  EXPECT_EQ(j["volume"]["inverted"].get<int>(), 0);
+  EXPECT_TRUE(j["volume"]["closed_boundary"].get<bool>());
+  EXPECT_GT(j["volume"]["tetrahedra"].get<int>(), 10000);
   // The paper's four surface meshes, of equal size.
   for (const char* kind : {"uniform", "distance", "curvature", "anisotropic"}) {
     EXPECT_NEAR(j["surface_meshes"][kind]["triangles"].get<double>(), 8000.0, 240.0) << kind;

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace vesselmesh::io {
 namespace {
 
@@ -44,6 +46,55 @@ TEST(Msh, BadFileIsAnInputError) {
   test::write_bytes(tmp.path("bad.msh"), "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\ngarbage\n");
   EXPECT_THROW(read_msh_surface(tmp.path("bad.msh")), InputError);
   EXPECT_THROW(read_msh_surface(tmp.path("missing.msh")), InputError);
+}
+
+}  // namespace
+}  // namespace vesselmesh::io
+
+namespace vesselmesh::io {
+namespace {
+
+// One prism on the wall triangle (0, 1, 2) (z = 0, facing -z) topped at z = 1, and a
+// tetrahedron on its top: the boundary is every face of the two cells but the shared one.
+TetMesh prism_and_tet() {
+  TetMesh m;
+  m.points = {{0, 0, 0}, {0, 1, 0}, {1, 0, 0}, {0, 0, 1}, {0, 1, 1}, {1, 0, 1}, {0.3, 0.3, 2}};
+  m.prisms = {{0, 1, 2, 3, 4, 5}};
+  m.tets = {{3, 5, 4, 6}};
+  EXPECT_GT(mesh::tet_volume6(m, m.tets[0]), 0.0);
+  std::vector<Tet> all(m.tets);
+  for (const Tet& t : mesh::split_prism(m.prisms[0])) all.push_back(t);
+  m.boundary = mesh::tet_boundary(all);
+  for (const Triangle& f : m.boundary) {
+    const bool wall = f[0] < 3 && f[1] < 3 && f[2] < 3;
+    m.boundary_tags.push_back(wall ? 1 : 2);
+  }
+  m.tag_names = {{1, "wall"}, {2, "rest"}};
+  m.volume_tag = 7;
+  return m;
+}
+
+TEST(MshVolume, RoundTripKeepsCellsTagsAndNames) {
+  test::TemporaryFolder tmp;
+  const TetMesh m = prism_and_tet();
+  write_msh(tmp.path("v.msh"), m);
+  const TetMesh back = read_msh_volume(tmp.path("v.msh"));
+  EXPECT_EQ(back.points, m.points);
+  EXPECT_EQ(back.tets, m.tets);
+  EXPECT_EQ(back.prisms, m.prisms);
+  EXPECT_EQ(back.volume_tag, 7);
+  EXPECT_EQ(back.volume_name, "fluid");
+  EXPECT_EQ(back.tag_names, m.tag_names);
+  ASSERT_EQ(back.boundary.size(), m.boundary.size());
+  for (size_t i = 0; i < m.boundary.size(); ++i) {
+    const auto it = std::find(back.boundary.begin(), back.boundary.end(), m.boundary[i]);
+    ASSERT_NE(it, back.boundary.end());
+    EXPECT_EQ(back.boundary_tags[it - back.boundary.begin()], m.boundary_tags[i]);
+  }
+  // A surface MSH is not a volume: a clear error.
+  write_msh(tmp.path("s.msh"), test::tetrahedron());
+  EXPECT_THROW(read_msh_volume(tmp.path("s.msh")), InputError);
+  EXPECT_THROW(read_msh_volume(tmp.path("none.msh")), InputError);
 }
 
 }  // namespace

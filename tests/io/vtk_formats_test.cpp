@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "io/atomic_file.h"
 
 #include <cstring>
@@ -128,6 +130,29 @@ TEST(VtkFormats, SimVascularModelFaceIdsAreLabels) {
   // The counts its README gives for faces 1..5.
   EXPECT_EQ(count, (std::map<int, int>{{1, 9267}, {2, 5222}, {3, 78}, {4, 35}, {5, 32}}));
   EXPECT_EQ(s.mesh.num_points(), 7319);
+}
+
+}  // namespace
+}  // namespace vesselmesh::io
+
+namespace vesselmesh::io {
+namespace {
+
+TEST(VtuVolume, BoundaryTrianglesReadBackWithTheirTags) {
+  test::TemporaryFolder tmp;
+  TetMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.tets = {{0, 1, 2, 3}};
+  m.boundary = mesh::tet_boundary(m.tets);
+  m.boundary_tags = {3, 4, 4, 4};
+  m.tag_names = {{3, "inlet"}, {4, "wall"}};
+  write_vtu(tmp.path("v.vtu"), m, {Field::scalar("radius", {1, 2, 3, 4})});
+  // The surface reader takes the triangles of a VTU and its `tag` array as labels.
+  const SurfaceData back = read_vtk_surface(tmp.path("v.vtu"), VtkFormat::vtu);
+  EXPECT_EQ(back.mesh.num_triangles(), 4);
+  ASSERT_EQ(back.mesh.labels.size(), 4u);
+  EXPECT_EQ(std::count(back.mesh.labels.begin(), back.mesh.labels.end(), 4), 3);
+  EXPECT_EQ(tmp.files(), std::vector<std::string>{"v.vtu"});
 }
 
 }  // namespace

@@ -1,0 +1,224 @@
+// vesselmesh volume: boundary layer, caps and interior tetrahedra (volume/volume_mesh.h);
+// vesselmesh quality: the figures of a volume mesh (volume/quality.h).
+#include "commands.h"
+
+#include "io/msh.h"
+#include "io/vtk_formats.h"
+#include "mesh/error.h"
+#include "mesh/geometry.h"
+#include "volume/quality.h"
+#include "volume/volume_mesh.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <sstream>
+
+namespace vesselmesh::cli {
+namespace {
+
+enum class VolumeFormat { vtu, msh };
+
+VolumeFormat volume_format(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension == ".vtu") return VolumeFormat::vtu;
+  if (extension == ".msh") return VolumeFormat::msh;
+  throw OptionError(fmt::format("{}: a volume mesh is written as .vtu (VTK, with layer data) or .msh (Gmsh 4.1)", path));
+}
+
+std::vector<std::string> split_names(const std::string& text) {
+  std::vector<std::string> names;
+  std::stringstream stream(text);
+  for (std::string name; std::getline(stream, name, ',');) names.push_back(name);
+  return names;
+}
+
+Json quality_json(const volume::VolumeQuality& q) {
+  Json tags = Json::object();
+  for (const auto& [name, count] : q.triangles_per_tag) tags[name] = count;
+  Json json = {{"points", q.points},
+               {"tetrahedra", q.tets},
+               {"prisms", q.prisms},
+               {"boundary_triangles", tags},
+               {"inverted", q.inverted},
+               {"closed_boundary", q.closed},
+               {"open_faces", q.open_faces},
+               {"stray_triangles", q.stray_triangles},
+               {"dihedral_deg",
+                {{"min", round_to(q.min_dihedral, 4)},
+                 {"median", round_to(q.median_dihedral, 4)},
+                 {"max", round_to(q.max_dihedral, 4)},
+                 {"min_layer", q.min_dihedral_layer >= 0 ? Json(round_to(q.min_dihedral_layer, 4)) : Json(nullptr)},
+                 {"min_interior", q.min_dihedral_interior >= 0 ? Json(round_to(q.min_dihedral_interior, 4)) : Json(nullptr)}}},
+               {"worst_scaled_jacobian", round_to(q.worst_scaled_jacobian, 4)},
+               {"worst_aspect_ratio", round_to(q.worst_aspect_ratio, 4)}};
+  if (q.has_layers) {
+    json["boundary_layer"] = {
+        {"wall_triangles", q.wall_triangles},
+        {"layers_min", q.min_layers},
+        {"layers_max", q.max_layers},
+        {"thickness_over_radius_min", q.min_thickness_ratio >= 0 ? Json(round_to(q.min_thickness_ratio, 4)) : Json(nullptr)},
+        {"thickness_over_radius_max", q.max_thickness_ratio >= 0 ? Json(round_to(q.max_thickness_ratio, 4)) : Json(nullptr)}};
+  } else {
+    json["boundary_layer"] = nullptr;
+  }
+  return json;
+}
+
+std::string quality_text(const volume::VolumeQuality& q) {
+  std::string tags;
+  for (const auto& [name, count] : q.triangles_per_tag) tags += fmt::format("{}{} {}", tags.empty() ? "" : ", ", name, count);
+  std::string text = fmt::format(
+      "{} points, {} tetrahedra, {} prisms; boundary triangles: {}; inverted {}; boundary {}; dihedral angles min {:.2f} "
+      "median {:.1f} max {:.1f} deg",
+      q.points, q.tets, q.prisms, tags, q.inverted,
+      q.closed ? "closed" : fmt::format("OPEN ({} faces untagged, {} stray triangles)", q.open_faces, q.stray_triangles),
+      q.min_dihedral, q.median_dihedral, q.max_dihedral);
+  if (q.min_dihedral_layer >= 0) text += fmt::format(" (layer {:.2f}, interior {:.2f})", q.min_dihedral_layer, q.min_dihedral_interior);
+  text += fmt::format("; worst scaled Jacobian {:.3f}, worst aspect ratio {:.2f}", q.worst_scaled_jacobian, q.worst_aspect_ratio);
+  if (q.has_layers) {
+    text += fmt::format("; layers per wall triangle {}..{}", q.min_layers, q.max_layers);
+    if (q.min_thickness_ratio >= 0)
+      text += fmt::format(", thickness {:.3f}..{:.3f} of the local radius", q.min_thickness_ratio, q.max_thickness_ratio);
+  }
+  return text;
+}
+
+}  // namespace
+
+Command add_volume_command(CLI::App& parent) {
+  CLI::App* app = parent.add_subcommand(
+      "volume",
+      "Builds the volume mesh of the lumen: --layers prism layers extruded inward from the wall (total thickness "
+      "--thickness-ratio x the local radius from the distance map, shrunk smoothly where columns would cross, and "
+      "reported), each prism cut into three tetrahedra; a planar quality cap on each end; Gmsh's tetrahedra inside. "
+      "Boundary tags: wall, inlet (the largest end unless --inlet), outlet_1, ... in the order of 'vesselmesh info'. "
+      "Give a remeshed surface (vesselmesh remesh): the layer stands on its triangles");
+  struct Options {
+    SurfaceInput surface;
+    std::string output, algorithm = "delaunay", end_names;
+    volume::VolumeOptions volume;
+    CommonOptions common;
+  };
+  auto o = std::make_shared<Options>();
+  add_surface_input(*app, o->surface);
+  app->add_option("-o,--output", o->output,
+                  "Output volume mesh: .vtu (cell data tag, layer, column; point data radius) or .msh (Gmsh 4.1, physical "
+                  "groups)")
+      ->required();
+  app->add_option("--layers", o->volume.layer.layers, "Boundary-layer layers (0: none)")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  app->add_option("--thickness-ratio", o->volume.layer.thickness_ratio, "Layer thickness over the local radius")
+      ->check(CLI::Range(1e-6, 0.5))
+      ->capture_default_str();
+  app->add_option("--growth", o->volume.layer.growth, "Height ratio of successive layers, from the wall (1: uniform)")
+      ->check(CLI::Range(0.2, 5.0))
+      ->capture_default_str();
+  app->add_option("--algorithm", o->algorithm,
+                  "Interior tetrahedra: delaunay (Gmsh's; the same mesh run after run), hxt (Gmsh's HXT: threaded, "
+                  "fewer slivers, but not the same mesh twice), or frontal (needs a Gmsh built with Netgen)")
+      ->check(CLI::IsMember({"delaunay", "frontal", "hxt"}))
+      ->capture_default_str();
+  app->add_flag("--keep-prisms", o->volume.keep_prisms, "Write the layer's prisms instead of cutting them into tetrahedra");
+  app->add_option("--inlet", o->volume.inlet, "The end that is the inlet, numbered from 0 as 'vesselmesh info' lists them "
+                                              "(default: the largest)");
+  app->add_option("--end-names", o->end_names,
+                  "Names of all ends, comma-separated, in the order of 'vesselmesh info' (instead of inlet, outlet_1, ...)");
+  app->add_option("--threads", o->volume.threads, "Threads for HXT (0: all)")->check(CLI::NonNegativeNumber);
+  add_common_options(*app, o->common);
+  return {app, [o] {
+            const VolumeFormat format = volume_format(o->output);
+            volume::VolumeOptions options = o->volume;
+            options.algorithm = volume::parse_fill_algorithm(o->algorithm);
+            if (!o->end_names.empty()) options.end_names = split_names(o->end_names);
+            TerminalReporter reporter(o->common.quiet);
+            const auto start = std::chrono::steady_clock::now();
+            const CheckedSurface surface = read_surface_input(o->surface, reporter);
+            const TriMesh& wall = surface.file.mesh;
+            if (surface.ends.empty())
+              throw InputError(fmt::format("{}: the surface has no open or flat-capped end: a flow domain needs an inlet and "
+                                           "an outlet; cut the vessel's ends open",
+                                           o->surface.path));
+            const centerline::DistanceMap distance =
+                centerline::distance_map(wall, centerline::extract(wall, {}, reporter));
+            const volume::VolumeResult result = volume::build_volume(wall, surface.ends, distance.radius, options, reporter);
+            if (format == VolumeFormat::vtu)
+              io::write_vtu(o->output, result.mesh, {Field::scalar("radius", result.radius)});
+            else
+              io::write_msh(o->output, result.mesh);
+            const volume::VolumeQuality q = volume::measure_volume(result.mesh, result.radius);
+            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const volume::VolumeReport& r = result.report;
+            if (o->common.json) {
+              Json ends = Json::array();
+              for (const volume::VolumeEnd& end : r.ends)
+                ends.push_back({{"name", end.name},
+                                {"tag", end.tag},
+                                {"center", to_json(end.center)},
+                                {"normal", to_json(end.normal)},
+                                {"radius", round_to(end.radius, 6)},
+                                {"capped_in_input", end.capped},
+                                {"cap_triangles", end.cap_triangles}});
+              Json json = quality_json(q);
+              json["input"] = o->surface.path;
+              json["output"] = o->output;
+              json["units"] = "mm";
+              json["algorithm"] = volume::fill_algorithm_name(options.algorithm);
+              json["layers"] = r.layers;
+              json["layer_cells"] = r.layer_tets + r.layer_prisms;
+              json["interior_tetrahedra"] = r.interior_tets;
+              json["wall_tag"] = r.wall_tag;
+              json["ends"] = ends;
+              json["shrink"] = {{"wall_points", r.shrunk_vertices},
+                                {"least_fraction", round_to(r.least_fraction, 4)},
+                                {"least_at", to_json(r.least_at)}};
+              json["seconds"] = round_to(seconds, 4);
+              print_json(json);
+            } else {
+              std::string names;
+              for (const volume::VolumeEnd& end : r.ends)
+                names += fmt::format("{}{} (tag {}) at {}", names.empty() ? "" : ", ", end.name, end.tag,
+                                     mesh::format_point(end.center));
+              reporter.info(fmt::format("ends: {}", names));
+              reporter.info(quality_text(q));
+              reporter.info(fmt::format("{:.1f} s; wrote {} (mm)", seconds, o->output));
+            }
+            return 0;
+          }};
+}
+
+Command add_quality_command(CLI::App& parent) {
+  CLI::App* app = parent.add_subcommand(
+      "quality",
+      "Figures of a volume mesh (.msh, as 'vesselmesh volume' or Gmsh writes it): points, tetrahedra, triangles per "
+      "tag, inverted cells, dihedral angles, worst scaled Jacobian and aspect ratio, whether the tagged boundary closes "
+      "the volume. Exit code 3 when a cell is inverted or the boundary is open");
+  struct Options {
+    std::string mesh;
+    CommonOptions common;
+  };
+  auto o = std::make_shared<Options>();
+  app->add_option("MESH", o->mesh, "Volume mesh (.msh)")->required();
+  add_common_options(*app, o->common);
+  return {app, [o] {
+            if (volume_format(o->mesh) != VolumeFormat::msh)
+              throw OptionError(fmt::format("{}: quality reads .msh volume meshes (write one with vesselmesh volume -o "
+                                            "X.msh); reading .vtu back is not there yet",
+                                            o->mesh));
+            TerminalReporter reporter(o->common.quiet);
+            const TetMesh mesh = io::read_msh_volume(o->mesh);
+            const volume::VolumeQuality q = volume::measure_volume(mesh);
+            if (o->common.json) {
+              Json json = quality_json(q);
+              json["mesh"] = o->mesh;
+              print_json(json);
+            } else {
+              reporter.info(quality_text(q));
+            }
+            return q.inverted == 0 && q.closed ? 0 : 3;
+          }};
+}
+
+}  // namespace vesselmesh::cli

@@ -1,0 +1,106 @@
+#include "mesh/tetmesh.h"
+
+#include "mesh/error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace vesselmesh::mesh {
+
+std::array<Tet, 3> split_prism(const Prism& p) {
+  // Vertical edge i joins bottom p[i] to top p[i + 3]. Lifting the bottom triangle to the top
+  // one edge at a time in the order (i, j, k) gives the tetrahedra (b_i b_j b_k t_i),
+  // (t_i b_j b_k t_j), (t_i t_j b_k t_k), and cuts the side between edges i and j along
+  // (t_i, b_j). The least-index rule picks that diagonal where it passes through the side's
+  // least vertex, i.e. edge i goes first when min(b_j, t_i) < min(b_i, t_j). The rule never
+  // asks for a cycle (Dompierre et al.), so the order exists.
+  auto before = [&](int i, int j) { return std::min(p[j], p[i + 3]) < std::min(p[i], p[j + 3]); };
+  std::array<int, 3> order = {0, 1, 2};
+  std::sort(order.begin(), order.end(), [&](int i, int j) { return i != j && before(i, j); });
+  VM_CHECK(before(order[0], order[1]) && before(order[1], order[2]) && before(order[0], order[2]),
+           "split_prism: the prism's vertices are not distinct");
+  const auto [i, j, k] = order;
+  std::array<Tet, 3> tets = {Tet{p[i], p[j], p[k], p[i + 3]}, Tet{p[i + 3], p[j], p[k], p[j + 3]},
+                             Tet{p[i + 3], p[j + 3], p[k], p[k + 3]}};
+  // Orientation from the reference prism (bottom (0,0,0), (0,1,0), (1,0,0) facing -z, top at
+  // z = 1), so that an inverted real prism shows as negative tetrahedra instead of being mended.
+  static const Vec3 reference[6] = {{0, 0, 0}, {0, 1, 0}, {1, 0, 0}, {0, 0, 1}, {0, 1, 1}, {1, 0, 1}};
+  auto local = [&](int v) { return reference[std::find(p.begin(), p.end(), v) - p.begin()]; };
+  for (Tet& t : tets)
+    if (tet_volume6(local(t[0]), local(t[1]), local(t[2]), local(t[3])) < 0) std::swap(t[0], t[1]);
+  return tets;
+}
+
+std::array<double, 6> dihedral_angles(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  // Outward-facing normals of the faces opposite each corner (orientation-independent angles).
+  const Vec3 p[4] = {a, b, c, d};
+  Vec3 n[4];
+  static const int face[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  for (int f = 0; f < 4; ++f) {
+    n[f] = (p[face[f][1]] - p[face[f][0]]).cross(p[face[f][2]] - p[face[f][0]]);
+    const double len = n[f].norm();
+    if (len > 0) n[f] /= len;
+  }
+  // The edge between corners (i, j) is shared by the faces opposite the other two corners.
+  static const int edge_faces[6][2] = {{2, 3}, {1, 3}, {1, 2}, {0, 3}, {0, 2}, {0, 1}};
+  std::array<double, 6> angles{};
+  for (int e = 0; e < 6; ++e) {
+    const double cosine = std::clamp(-n[edge_faces[e][0]].dot(n[edge_faces[e][1]]), -1.0, 1.0);
+    angles[e] = std::acos(cosine);
+  }
+  return angles;
+}
+
+double scaled_jacobian(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const double volume6 = tet_volume6(a, b, c, d);
+  const Vec3 p[4] = {a, b, c, d};
+  double largest = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    double product = 1.0;
+    for (int j = 0; j < 4; ++j)
+      if (j != i) product *= (p[j] - p[i]).norm();
+    largest = std::max(largest, product);
+  }
+  return largest > 0 ? std::numbers::sqrt2 * volume6 / largest : 0.0;
+}
+
+Triangle canonical_rotation(const Triangle& f) {
+  Triangle out = f;
+  std::rotate(out.begin(), std::min_element(out.begin(), out.end()), out.end());
+  return out;
+}
+
+std::vector<Triangle> tet_boundary(const std::vector<Tet>& tets, int* nonmanifold) {
+  // Every face, outward (the right-hand normal points away from the opposite corner), keyed by
+  // its sorted corners; a face seen twice is interior.
+  struct Face {
+    std::array<int, 3> key;
+    Triangle oriented;
+  };
+  std::vector<Face> faces;
+  faces.reserve(4 * tets.size());
+  for (const Tet& t : tets) {
+    const Triangle sides[4] = {{t[1], t[2], t[3]}, {t[0], t[3], t[2]}, {t[0], t[1], t[3]}, {t[0], t[2], t[1]}};
+    for (const Triangle& f : sides) {
+      std::array<int, 3> key = f;
+      std::sort(key.begin(), key.end());
+      faces.push_back({key, f});
+    }
+  }
+  std::sort(faces.begin(), faces.end(), [](const Face& x, const Face& y) { return x.key < y.key; });
+  std::vector<Triangle> out;
+  int many = 0;
+  for (size_t i = 0; i < faces.size();) {
+    size_t j = i;
+    while (j < faces.size() && faces[j].key == faces[i].key) ++j;
+    if (j - i == 1) out.push_back(canonical_rotation(faces[i].oriented));
+    if (j - i > 2) ++many;
+    i = j;
+  }
+  if (nonmanifold) *nonmanifold = many;
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace vesselmesh::mesh

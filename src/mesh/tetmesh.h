@@ -1,0 +1,78 @@
+// Volume mesh data: the tetrahedra (and, on request, the prisms of a boundary layer) of a
+// lumen, with its boundary triangles tagged by name for the solver.
+//
+// Tetrahedra have positive volume: (b - a) x (c - a) . (d - a) > 0. Prisms (a, b, c, a', b', c')
+// have their first triangle on the wall, oriented outward (away from a', b', c'), and a' above a;
+// this is VTK's wedge order. Boundary triangles are oriented outward (right-hand rule).
+// Tags: `boundary_tags[i]` names boundary triangle i through `tag_names` (`wall`, `inlet`,
+// `outlet_1`, ...); the fluid has one volume tag. Per cell, `layer` is the boundary-layer
+// level counted from the wall (1 .. N) or 0 in the interior, and `column` the wall triangle
+// the layer cell stands on (-1 in the interior); both empty when unknown (a mesh read back
+// from a foreign file).
+#pragma once
+
+#include "mesh/trimesh.h"
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace vesselmesh {
+
+using Tet = std::array<int, 4>;
+using Prism = std::array<int, 6>;
+
+struct TetMesh {
+  std::vector<Vec3> points;
+  std::vector<Tet> tets;
+  std::vector<Prism> prisms;  // empty unless the layer keeps its prisms
+  std::vector<int> tet_layer, tet_column;
+  std::vector<int> prism_layer, prism_column;
+  std::vector<Triangle> boundary;
+  std::vector<int> boundary_tags;
+  std::map<int, std::string> tag_names;
+  int volume_tag = 1;
+  std::string volume_name = "fluid";
+
+  int num_points() const { return static_cast<int>(points.size()); }
+  int num_tets() const { return static_cast<int>(tets.size()); }
+  int num_prisms() const { return static_cast<int>(prisms.size()); }
+  int num_cells() const { return num_tets() + num_prisms(); }
+  bool has_layers() const { return !tet_layer.empty() || !prism_layer.empty(); }
+};
+
+namespace mesh {
+
+// Six times the signed volume of tetrahedron (a, b, c, d).
+inline double tet_volume6(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  return (b - a).cross(c - a).dot(d - a);
+}
+inline double tet_volume6(const TetMesh& m, const Tet& t) {
+  return tet_volume6(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]);
+}
+
+// The three tetrahedra of prism (a, b, c, a', b', c') (TetMesh order): each quadrilateral side
+// is cut along the diagonal through its vertex of least global index, so that two prisms
+// sharing a side cut it alike (Dompierre, Labbe, Vallet, Camarero, "How to subdivide pyramids,
+// prisms and hexahedra into tetrahedra", IMR 1999). Oriented positively for a valid prism.
+std::array<Tet, 3> split_prism(const Prism& p);
+
+// The six dihedral angles of a tetrahedron, in radians.
+std::array<double, 6> dihedral_angles(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+// The scaled Jacobian of a tetrahedron: its signed volume divided by the largest product of
+// the three edge lengths at a corner, times sqrt(2); 1 for the regular tetrahedron, <= 0 when
+// inverted or flat.
+double scaled_jacobian(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+// A triangle's corners rotated so that the least comes first (its orientation kept): one
+// spelling per oriented triangle, for comparing faces.
+Triangle canonical_rotation(const Triangle& f);
+
+// The boundary faces of a set of tetrahedra: faces used by one tetrahedron, oriented outward,
+// in canonical rotation, sorted. Faces used by more than two tetrahedra are counted in `nonmanifold`.
+std::vector<Triangle> tet_boundary(const std::vector<Tet>& tets, int* nonmanifold = nullptr);
+
+}  // namespace mesh
+}  // namespace vesselmesh

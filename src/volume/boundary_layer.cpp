@@ -1,0 +1,233 @@
+#include "volume/boundary_layer.h"
+
+#include "analysis/normals.h"
+#include "mesh/connectivity.h"
+#include "mesh/error.h"
+#include "mesh/geometry.h"
+#include "mesh/self_intersections.h"
+#include "sizing/gradation.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace vesselmesh::volume {
+namespace {
+
+void check_options(const BoundaryLayerOptions& o) {
+  if (o.layers < 1 || o.layers > 100) throw OptionError(fmt::format("--layers {}: give 1 to 100 layers", o.layers));
+  if (!(o.thickness_ratio > 0.0 && o.thickness_ratio <= 0.5))
+    throw OptionError(fmt::format("--thickness-ratio {}: give a fraction of the radius in (0, 0.5]", o.thickness_ratio));
+  if (!(o.growth >= 0.2 && o.growth <= 5.0))
+    throw OptionError(fmt::format("--growth {}: give a ratio of successive layer heights in [0.2, 5]", o.growth));
+  if (o.normal_smoothing < 0) throw OptionError("normal smoothing passes must be >= 0");
+  if (!(o.shrink_slope > 0.0)) throw OptionError("the shrink slope must be > 0");
+  if (!(o.min_thickness_fraction > 0.0 && o.min_thickness_fraction < 1.0))
+    throw OptionError("the least thickness fraction must be in (0, 1)");
+}
+
+// Smoothed inward directions: Max normals, averaged over the one-ring, turned into the end's
+// plane on an end's loop.
+std::vector<Vec3> column_directions(const TriMesh& wall, const mesh::EdgeMap& edges, const std::vector<WallEnd>& ends,
+                                    int passes) {
+  const int n = wall.num_points();
+  std::vector<Vec3> normal = analysis::vertex_normals(wall, analysis::NormalMethod::max);
+  std::vector<Vec3> plane(n, Vec3::Zero());  // the end's normal for loop vertices
+  for (const WallEnd& end : ends)
+    for (int v : end.loop) plane[v] = end.normal.normalized();
+  auto into_plane = [&](std::vector<Vec3>& dirs) {
+    for (int v = 0; v < n; ++v) {
+      if (plane[v].squaredNorm() > 0) dirs[v] -= dirs[v].dot(plane[v]) * plane[v];
+      const double len = dirs[v].norm();
+      if (len > 0) dirs[v] /= len;
+    }
+  };
+  into_plane(normal);
+  for (int pass = 0; pass < passes; ++pass) {
+    std::vector<Vec3> sum = normal;
+    for (const auto& [a, b] : edges.edges) {
+      sum[a] += normal[b];
+      sum[b] += normal[a];
+    }
+    into_plane(sum);
+    normal.swap(sum);
+  }
+  for (int v = 0; v < n; ++v) {
+    if (!(normal[v].squaredNorm() > 0.5))
+      throw InputError(fmt::format("the wall has no normal at point {} {}: a degenerate or folded neighbourhood; "
+                                   "remesh the surface first",
+                                   v, mesh::format_point(wall.points[v])));
+    normal[v] = -normal[v];
+  }
+  return normal;
+}
+
+}  // namespace
+
+std::vector<double> layer_fractions(int layers, double growth) {
+  std::vector<double> f(layers + 1, 0.0);
+  double height = 1.0;
+  for (int k = 1; k <= layers; ++k, height *= growth) f[k] = f[k - 1] + height;
+  for (double& x : f) x /= f[layers];
+  return f;
+}
+
+BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double>& radius,
+                                   const std::vector<WallEnd>& ends, const BoundaryLayerOptions& options,
+                                   const Reporter& reporter) {
+  check_options(options);
+  const int n = wall.num_points();
+  VM_CHECK(static_cast<int>(radius.size()) == n, "build_boundary_layer: one radius per wall point");
+  const mesh::EdgeMap edges = mesh::build_edge_map(wall);
+  BoundaryLayer out;
+  out.levels = options.layers + 1;
+  out.direction = column_directions(wall, edges, ends, options.normal_smoothing);
+  out.target.resize(n);
+  for (int v = 0; v < n; ++v) {
+    if (!(radius[v] > 0.0 && std::isfinite(radius[v])))
+      throw InputError(fmt::format("no local radius at wall point {} {}: the distance map did not reach it", v,
+                                   mesh::format_point(wall.points[v])));
+    out.target[v] = options.thickness_ratio * radius[v];
+  }
+  const std::vector<double> fraction = layer_fractions(options.layers, options.growth);
+  const int levels = out.levels;
+  out.points.resize(static_cast<size_t>(levels) * n);
+  auto place = [&](const std::vector<double>& thickness) {
+    for (int k = 0; k < levels; ++k)
+      for (int v = 0; v < n; ++v) out.points[k * n + v] = wall.points[v] + fraction[k] * thickness[v] * out.direction[v];
+  };
+
+  // The strips at the ends: side quads (u_k, u_k+1, v_k+1, v_k) of each loop edge u -> v, cut
+  // along the diagonal through their least index, as the prisms beside them are.
+  auto build_strips = [&] {
+    out.end_strips.assign(ends.size(), {});
+    out.inner_loops.assign(ends.size(), {});
+    for (size_t e = 0; e < ends.size(); ++e) {
+      const std::vector<int>& loop = ends[e].loop;
+      for (size_t i = 0; i < loop.size(); ++i) {
+        const int u = loop[i], v = loop[(i + 1) % loop.size()];
+        for (int k = 0; k + 1 < levels; ++k) {
+          const int u0 = k * n + u, u1 = (k + 1) * n + u, v0 = k * n + v, v1 = (k + 1) * n + v;
+          if (std::min(u0, v1) < std::min(u1, v0)) {
+            out.end_strips[e].push_back({u0, u1, v1});
+            out.end_strips[e].push_back({u0, v1, v0});
+          } else {
+            out.end_strips[e].push_back({u0, u1, v0});
+            out.end_strips[e].push_back({u1, v1, v0});
+          }
+        }
+        out.inner_loops[e].push_back((levels - 1) * n + u);
+      }
+    }
+  };
+  build_strips();
+
+  std::vector<Vec3> plane(n, Vec3::Zero());  // the end's normal for loop vertices
+  for (const WallEnd& end : ends)
+    for (int v : end.loop) plane[v] = end.normal.normalized();
+  const mesh::VertexTriangles around = mesh::build_vertex_triangles(wall);
+  auto turn_toward_visible = [&](int v) {
+    Vec3& d = out.direction[v];
+    for (int step = 0; step < 20; ++step) {
+      double least = 1.0;
+      Vec3 worst = Vec3::Zero();
+      for (int t : around.of(v)) {
+        const Triangle& f = wall.triangles[t];
+        const Vec3 inward = -(wall.points[f[1]] - wall.points[f[0]]).cross(wall.points[f[2]] - wall.points[f[0]]).normalized();
+        if (inward.allFinite() && d.dot(inward) < least) least = d.dot(inward), worst = inward;
+      }
+      if (least >= 0.3) return;
+      Vec3 turned = d + 0.5 * worst;
+      if (plane[v].squaredNorm() > 0) turned -= turned.dot(plane[v]) * plane[v];
+      if (!(turned.norm() > 1e-9)) return;
+      d = turned.normalized();
+    }
+  };
+  std::vector<double> limit = out.target;
+  const double growth = std::exp(options.shrink_slope);
+  std::vector<char> bad(n, 0);
+  constexpr int kMaxRounds = 60;
+  for (int round = 0;; ++round) {
+    sizing::grade_sizes(wall, limit, growth);
+    place(limit);
+    std::fill(bad.begin(), bad.end(), 0);
+    int local_failures = 0;
+    // Inner edges keep a quarter of their wall length (in the edge's own direction).
+    for (const auto& [a, b] : edges.edges) {
+      const Vec3 e = wall.points[b] - wall.points[a];
+      const Vec3 inner = out.points[(levels - 1) * n + b] - out.points[(levels - 1) * n + a];
+      if (inner.dot(e) < 0.25 * e.squaredNorm()) bad[a] = bad[b] = 1, ++local_failures;
+    }
+    // Prisms: positive tetrahedra (at least 5 % of a right prism's volume) and top faces that
+    // turn less than 60 degrees.
+    for (const Triangle& f : wall.triangles) {
+      const Vec3 base = (wall.points[f[1]] - wall.points[f[0]]).cross(wall.points[f[2]] - wall.points[f[0]]);
+      bool ok = true;
+      for (int k = 0; ok && k + 1 < levels; ++k) {
+        const Prism p = {k * n + f[0], k * n + f[1], k * n + f[2], (k + 1) * n + f[0], (k + 1) * n + f[1], (k + 1) * n + f[2]};
+        const double height = (fraction[k + 1] - fraction[k]) * (limit[f[0]] + limit[f[1]] + limit[f[2]]) / 3.0;
+        for (const Tet& t : mesh::split_prism(p))
+          if (mesh::tet_volume6(out.points[t[0]], out.points[t[1]], out.points[t[2]], out.points[t[3]]) <
+              0.05 * base.norm() * height)
+            ok = false;
+        const Vec3& a = out.points[p[3]];
+        const Vec3 top = (out.points[p[4]] - a).cross(out.points[p[5]] - a);
+        if (top.dot(base) < 0.5 * top.norm() * base.norm()) ok = false;
+      }
+      if (!ok) bad[f[0]] = bad[f[1]] = bad[f[2]] = 1, ++local_failures;
+    }
+    int crossings = 0;
+    if (local_failures == 0) {
+      // The layer's closed boundary: wall, strips, inner surface turned inside out.
+      TriMesh closed;
+      closed.points = out.points;
+      closed.triangles = wall.triangles;
+      for (const auto& strip : out.end_strips) closed.triangles.insert(closed.triangles.end(), strip.begin(), strip.end());
+      for (const Triangle& f : wall.triangles)
+        closed.triangles.push_back({(levels - 1) * n + f[0], (levels - 1) * n + f[2], (levels - 1) * n + f[1]});
+      for (const auto& [s, t] : mesh::self_intersecting_pairs(closed)) {
+        for (int v : closed.triangles[s]) bad[v % n] = 1;
+        for (int v : closed.triangles[t]) bad[v % n] = 1;
+        ++crossings;
+      }
+    }
+    if (local_failures == 0 && crossings == 0) break;
+    // Shrink the marked columns; one that cannot shrink further is an error naming it. A
+    // column nearly tangent to one of its triangles folds at any height: it turns toward that
+    // triangle's normal first (the direction every triangle around sees best).
+    for (int v = 0; v < n; ++v) {
+      if (!bad[v]) continue;
+      turn_toward_visible(v);
+      limit[v] *= 0.7;
+      if (limit[v] < options.min_thickness_fraction * out.target[v] || round == kMaxRounds) {
+        throw InputError(fmt::format(
+            "the boundary layer cannot be built near wall point {} {}: its columns {} even at {:.1f} % of the "
+            "thickness asked for; remesh the surface finer there or lower --thickness-ratio",
+            v, mesh::format_point(wall.points[v]),
+            local_failures > 0 ? "fold or invert" : "cross another part of the layer",
+            100.0 * options.min_thickness_fraction));
+      }
+    }
+    reporter.info(fmt::format("boundary layer: round {}: {} folding places, {} crossing pairs; shrinking there",
+                              round + 1, local_failures, crossings));
+  }
+  out.thickness = limit;
+
+  for (const Triangle& f : wall.triangles) {
+    for (int k = 0; k + 1 < levels; ++k) {
+      out.prisms.push_back({k * n + f[0], k * n + f[1], k * n + f[2], (k + 1) * n + f[0], (k + 1) * n + f[1], (k + 1) * n + f[2]});
+      out.prism_layer.push_back(k + 1);
+      out.prism_column.push_back(static_cast<int>(&f - wall.triangles.data()));
+    }
+    out.inner.push_back({(levels - 1) * n + f[0], (levels - 1) * n + f[1], (levels - 1) * n + f[2]});
+  }
+  for (int v = 0; v < n; ++v) {
+    const double kept = out.thickness[v] / out.target[v];
+    if (kept < 0.999) ++out.shrunk_vertices;
+    if (kept < out.least_fraction) out.least_fraction = kept, out.least_at = wall.points[v];
+  }
+  return out;
+}
+
+}  // namespace vesselmesh::volume

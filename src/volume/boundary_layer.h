@@ -1,0 +1,76 @@
+// The boundary layer: N layers of prisms extruded inward from the wall of a lumen surface.
+//
+// Directions: Max-weighted vertex normals (analysis/normals.h) averaged over the one-ring
+// `normal_smoothing` times, so that a segmentation's noise does not tilt the columns; on an
+// open end's loop they are turned into the end's plane, so the layer ends flush with it.
+// Thickness: `thickness_ratio` x the local radius (the distance map's inscribed-sphere
+// radius), split into `layers` heights growing by `growth` from the wall (1: uniform).
+// Where columns converge (narrow places, tight bends, noisy spots) the thickness shrinks,
+// smoothly (it changes by at most `shrink_slope` per unit length along the wall), until
+//   - every layer prism splits into three positive tetrahedra whose top triangle turns less
+//     than 60 degrees from the wall triangle's,
+//   - an edge of the inner surface keeps at least a quarter of its wall length, and
+//   - the layer's closed boundary (wall, end strips, inner surface) does not intersect
+//     itself (exact predicates, CGAL).
+// A column that would have to shrink below `min_thickness_fraction` of its target is an
+// InputError naming the place: a layer is never left out silently.
+//
+// Points: the wall's points first (same indices), then one copy per level: the point of wall
+// vertex v at level k (0 = wall, N = inner surface) has index k * n + v, n = wall points.
+#pragma once
+
+#include "mesh/reporter.h"
+#include "mesh/tetmesh.h"
+#include "mesh/trimesh.h"
+
+#include <vector>
+
+namespace vesselmesh::volume {
+
+struct BoundaryLayerOptions {
+  int layers = 4;
+  double thickness_ratio = 0.1;
+  double growth = 1.0;  // each layer this many times thicker than the one nearer the wall
+  int normal_smoothing = 4;
+  double shrink_slope = 0.2;
+  double min_thickness_fraction = 0.02;
+};
+
+// An open end of the wall: its boundary loop (wall vertex indices, in the direction of the
+// wall triangles' own edges) and the end's plane normal (out of the lumen).
+struct WallEnd {
+  std::vector<int> loop;
+  Vec3 normal = Vec3::Zero();
+};
+
+struct BoundaryLayer {
+  int levels = 0;  // layers + 1
+  std::vector<Vec3> points;
+  std::vector<Prism> prisms;      // TetMesh order: wall side first
+  std::vector<int> prism_layer;   // 1 .. N from the wall
+  std::vector<int> prism_column;  // the wall triangle below
+  // The inner surface, oriented like the wall (toward it); indices into `points`.
+  std::vector<Triangle> inner;
+  // Per end: the strip of side faces (two triangles per loop edge and layer, outward along
+  // the end's normal) and the inner loop (level N), in the wall loop's direction.
+  std::vector<std::vector<Triangle>> end_strips;
+  std::vector<std::vector<int>> inner_loops;
+  // Per wall vertex: the thickness built and the one asked for (ratio x radius).
+  std::vector<double> thickness, target;
+  std::vector<Vec3> direction;  // unit, inward
+  // Shrink report: vertices below 99.9 % of their target, the least fraction kept and where.
+  int shrunk_vertices = 0;
+  double least_fraction = 1.0;
+  Vec3 least_at = Vec3::Zero();
+};
+
+// `wall`: outward-oriented, manifold, its boundary loops exactly the `ends`; `radius` per wall
+// point (> 0).
+BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double>& radius,
+                                   const std::vector<WallEnd>& ends, const BoundaryLayerOptions& options,
+                                   const Reporter& reporter = silent_reporter());
+
+// Level heights as fractions of the thickness: levels + 1 values from 0 to 1.
+std::vector<double> layer_fractions(int layers, double growth);
+
+}  // namespace vesselmesh::volume

@@ -1,0 +1,283 @@
+#include "volume/volume_mesh.h"
+
+#include "mesh/connectivity.h"
+#include "mesh/error.h"
+#include "mesh/geometry.h"
+#include "volume/cap.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <set>
+
+namespace vesselmesh::volume {
+namespace {
+
+// The wall: the surface without its caps, points renumbered; `old_of[i]` is the surface point
+// of wall point i.
+struct Wall {
+  TriMesh mesh;
+  std::vector<int> old_of, new_of;
+  std::vector<WallEnd> ends;
+};
+
+Wall extract_wall(const TriMesh& surface, const std::vector<analysis::OpenEnd>& ends) {
+  std::vector<char> cap(surface.triangles.size(), 0);
+  for (const auto& end : ends)
+    for (int t : end.cap_triangles) cap[t] = 1;
+  Wall wall;
+  wall.new_of.assign(surface.points.size(), -1);
+  for (size_t t = 0; t < surface.triangles.size(); ++t) {
+    if (cap[t]) continue;
+    Triangle f = surface.triangles[t];
+    for (int& v : f) {
+      if (wall.new_of[v] < 0) {
+        wall.new_of[v] = static_cast<int>(wall.old_of.size());
+        wall.old_of.push_back(v);
+      }
+      v = wall.new_of[v];
+    }
+    wall.mesh.triangles.push_back(f);
+  }
+  // Points in their surface order, so that the numbering does not depend on the triangles'.
+  std::vector<int> order(wall.old_of.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return wall.old_of[a] < wall.old_of[b]; });
+  std::vector<int> renumber(order.size());
+  for (size_t i = 0; i < order.size(); ++i) renumber[order[i]] = static_cast<int>(i);
+  std::vector<int> old_of(order.size());
+  for (size_t i = 0; i < order.size(); ++i) old_of[renumber[i]] = wall.old_of[i];
+  wall.old_of = old_of;
+  for (Triangle& f : wall.mesh.triangles)
+    for (int& v : f) v = renumber[v];
+  std::fill(wall.new_of.begin(), wall.new_of.end(), -1);
+  for (size_t i = 0; i < wall.old_of.size(); ++i) {
+    wall.new_of[wall.old_of[i]] = static_cast<int>(i);
+    wall.mesh.points.push_back(surface.points[wall.old_of[i]]);
+  }
+  if (wall.mesh.triangles.empty()) throw InputError("the surface has no wall triangles");
+
+  // Every boundary loop of the wall is one of the ends.
+  const mesh::EdgeMap edges = mesh::build_edge_map(wall.mesh);
+  const auto loops = mesh::boundary_loops(wall.mesh, edges);
+  std::set<std::vector<int>> end_loops;
+  for (const auto& end : ends) {
+    WallEnd w;
+    w.normal = end.normal;
+    for (int v : end.loop) {
+      if (wall.new_of[v] < 0) throw InternalError("an end's loop point is not on the wall");
+      w.loop.push_back(wall.new_of[v]);
+    }
+    std::vector<int> key = w.loop;
+    std::sort(key.begin(), key.end());
+    end_loops.insert(key);
+    wall.ends.push_back(std::move(w));
+  }
+  for (auto loop : loops) {
+    const Vec3 at = wall.mesh.points[loop.front()];
+    std::sort(loop.begin(), loop.end());
+    if (!end_loops.count(loop))
+      throw InputError(fmt::format("the wall has a hole at {} that is not one of the ends (a boundary of {} edges); "
+                                   "close or repair the surface first",
+                                   mesh::format_point(at), loop.size()));
+  }
+  if (loops.size() != ends.size())
+    throw InputError(fmt::format("the wall has {} boundary loops for {} ends", loops.size(), ends.size()));
+  return wall;
+}
+
+// Tags: capped ends keep their label (when positive); the wall and the other ends take the
+// smallest free positive integers.
+void assign_tags(const std::vector<analysis::OpenEnd>& ends, const VolumeOptions& options, VolumeReport& report) {
+  const int count = static_cast<int>(ends.size());
+  if (options.inlet >= count || options.inlet < -1)
+    throw OptionError(fmt::format("--inlet {}: the surface has {} ends, numbered 0 to {} as `vesselmesh info` "
+                                  "lists them",
+                                  options.inlet, count, count - 1));
+  if (!options.end_names.empty() && static_cast<int>(options.end_names.size()) != count)
+    throw OptionError(fmt::format("--end-names: {} names given for {} ends", options.end_names.size(), count));
+  std::set<std::string> names_seen = {"wall"};
+  for (const std::string& name : options.end_names)
+    if (name.empty() || !names_seen.insert(name).second)
+      throw OptionError(fmt::format("--end-names: '{}' is empty, 'wall', or given twice", name));
+
+  std::set<int> taken;
+  for (const auto& end : ends)
+    if (end.capped && end.label > 0) taken.insert(end.label);
+  int next = 1;
+  auto fresh = [&] {
+    while (taken.count(next)) ++next;
+    taken.insert(next);
+    return next;
+  };
+  report.wall_tag = fresh();
+  const int inlet = options.inlet >= 0 ? options.inlet : 0;  // ends come largest first
+  int outlet = 0;
+  for (int e = 0; e < count; ++e) {
+    VolumeEnd v;
+    v.center = ends[e].center;
+    v.normal = ends[e].normal;
+    v.radius = ends[e].radius;
+    v.capped = ends[e].capped;
+    v.tag = ends[e].capped && ends[e].label > 0 ? ends[e].label : fresh();
+    v.name = !options.end_names.empty() ? options.end_names[e] : e == inlet ? "inlet" : fmt::format("outlet_{}", ++outlet);
+    report.ends.push_back(v);
+  }
+}
+
+}  // namespace
+
+void check_volume(const TetMesh& m) {
+  std::vector<Tet> all = m.tets;
+  for (int t = 0; t < m.num_tets(); ++t) {
+    const Tet& tet = m.tets[t];
+    if (!(mesh::tet_volume6(m, tet) > 0.0)) {
+      const Vec3 at = (m.points[tet[0]] + m.points[tet[1]] + m.points[tet[2]] + m.points[tet[3]]) / 4.0;
+      throw InputError(fmt::format("tetrahedron {} at {} is inverted or flat (6 V = {:.3g})", t, mesh::format_point(at),
+                                   mesh::tet_volume6(m, tet)));
+    }
+  }
+  for (int p = 0; p < m.num_prisms(); ++p) {
+    for (const Tet& tet : mesh::split_prism(m.prisms[p])) {
+      if (!(mesh::tet_volume6(m, tet) > 0.0))
+        throw InputError(fmt::format("prism {} at {} is inverted or flat", p, mesh::format_point(m.points[m.prisms[p][0]])));
+      all.push_back(tet);
+    }
+  }
+  int nonmanifold = 0;
+  const std::vector<Triangle> faces = mesh::tet_boundary(all, &nonmanifold);
+  std::vector<Triangle> boundary;
+  for (const Triangle& f : m.boundary) boundary.push_back(mesh::canonical_rotation(f));
+  std::sort(boundary.begin(), boundary.end());
+  // The prisms' quadrilateral sides appear as the triangles of their split, which is how
+  // the boundary lists them.
+  if (nonmanifold > 0 || faces != boundary)
+    throw InternalError(fmt::format("the volume's boundary is not closed as tagged: {} faces used by one cell, {} "
+                                    "boundary triangles, {} faces shared by more than two cells",
+                                    faces.size(), boundary.size(), nonmanifold));
+}
+
+VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::OpenEnd>& ends,
+                          const std::vector<double>& radius, const VolumeOptions& options, const Reporter& reporter) {
+  VM_CHECK(radius.size() == surface.points.size(), "build_volume: one radius per surface point");
+  if (ends.empty())
+    throw InputError("the surface has no ends (no boundary loop and no flat cap): a flow domain needs an inlet "
+                     "and an outlet; cut the vessel's ends open or cap them flat");
+  VolumeResult result;
+  VolumeReport& report = result.report;
+  assign_tags(ends, options, report);
+  const Wall wall = extract_wall(surface, ends);
+  const int n = wall.mesh.num_points();
+  std::vector<double> wall_radius(n);
+  for (int v = 0; v < n; ++v) wall_radius[v] = radius[wall.old_of[v]];
+
+  // Layer (or the wall itself) and the inner loops the caps close.
+  std::vector<Vec3> points;
+  std::vector<Triangle> inner;
+  std::vector<std::vector<int>> inner_loops;
+  std::vector<std::vector<Triangle>> strips(ends.size());
+  BoundaryLayer layer;
+  report.layers = options.layer.layers;
+  if (options.layer.layers > 0) {
+    reporter.progress("boundary layer", 0.0);
+    layer = build_boundary_layer(wall.mesh, wall_radius, wall.ends, options.layer, reporter);
+    reporter.progress("boundary layer", 1.0);
+    points = layer.points;
+    inner = layer.inner;
+    inner_loops = layer.inner_loops;
+    strips = layer.end_strips;
+    report.shrunk_vertices = layer.shrunk_vertices;
+    report.least_fraction = layer.least_fraction;
+    report.least_at = layer.least_at;
+    report.min_thickness_ratio = 1e300;
+    for (int v = 0; v < n; ++v) {
+      const double ratio = layer.thickness[v] / wall_radius[v];
+      report.min_thickness_ratio = std::min(report.min_thickness_ratio, ratio);
+      report.max_thickness_ratio = std::max(report.max_thickness_ratio, ratio);
+    }
+    if (layer.shrunk_vertices > 0)
+      reporter.warning(fmt::format("boundary layer thinner than asked at {} of {} wall points (down to {:.0f} % near {})",
+                                   layer.shrunk_vertices, n, 100.0 * layer.least_fraction,
+                                   mesh::format_point(layer.least_at)));
+  } else {
+    points = wall.mesh.points;
+    inner = wall.mesh.triangles;
+    for (const WallEnd& end : wall.ends) inner_loops.push_back(end.loop);
+  }
+
+  // Caps on the inner loops.
+  std::vector<std::vector<Triangle>> caps(ends.size());
+  for (size_t e = 0; e < ends.size(); ++e) {
+    std::vector<Vec3> loop;
+    for (int v : inner_loops[e]) loop.push_back(points[v]);
+    const Cap cap = triangulate_cap(loop, ends[e].normal);
+    const int m = static_cast<int>(loop.size()), base = static_cast<int>(points.size());
+    points.insert(points.end(), cap.points.begin(), cap.points.end());
+    for (Triangle f : cap.triangles) {
+      for (int& v : f) v = v < m ? inner_loops[e][v] : base + (v - m);
+      caps[e].push_back(f);
+    }
+    report.ends[e].cap_triangles = static_cast<int>(cap.triangles.size());
+  }
+
+  // Interior.
+  std::vector<Triangle> closed = inner;
+  for (const auto& cap : caps) closed.insert(closed.end(), cap.begin(), cap.end());
+  reporter.info(fmt::format("interior: {} boundary triangles, Gmsh {}", closed.size(), fill_algorithm_name(options.algorithm)));
+  FillResult fill = fill_tetrahedra(points, closed, options.algorithm, options.threads, reporter);
+
+  TetMesh& mesh = result.mesh;
+  mesh.points = std::move(fill.points);
+  if (options.layer.layers > 0) {
+    for (size_t p = 0; p < layer.prisms.size(); ++p) {
+      if (options.keep_prisms) {
+        mesh.prisms.push_back(layer.prisms[p]);
+        mesh.prism_layer.push_back(layer.prism_layer[p]);
+        mesh.prism_column.push_back(layer.prism_column[p]);
+        continue;
+      }
+      for (const Tet& t : mesh::split_prism(layer.prisms[p])) {
+        mesh.tets.push_back(t);
+        mesh.tet_layer.push_back(layer.prism_layer[p]);
+        mesh.tet_column.push_back(layer.prism_column[p]);
+      }
+    }
+  }
+  report.layer_tets = mesh.num_tets();
+  report.layer_prisms = mesh.num_prisms();
+  for (const Tet& t : fill.tets) {
+    mesh.tets.push_back(t);
+    mesh.tet_layer.push_back(0);
+    mesh.tet_column.push_back(-1);
+  }
+  report.interior_tets = static_cast<int>(fill.tets.size());
+
+  // Boundary: the wall (its triangles first, so a layer cell's column is its boundary index),
+  // then each end's strip and cap.
+  mesh.tag_names[report.wall_tag] = "wall";
+  for (const Triangle& f : wall.mesh.triangles) {
+    mesh.boundary.push_back(f);
+    mesh.boundary_tags.push_back(report.wall_tag);
+  }
+  for (size_t e = 0; e < ends.size(); ++e) {
+    mesh.tag_names[report.ends[e].tag] = report.ends[e].name;
+    for (const auto* part : {&strips[e], &caps[e]})
+      for (const Triangle& f : *part) {
+        mesh.boundary.push_back(f);
+        mesh.boundary_tags.push_back(report.ends[e].tag);
+      }
+  }
+  if (options.layer.layers == 0) {
+    mesh.tet_layer.clear();
+    mesh.tet_column.clear();
+  }
+  check_volume(mesh);
+
+  result.radius.assign(mesh.points.size(), 0.0);
+  const int levels = options.layer.layers > 0 ? options.layer.layers + 1 : 1;
+  for (int k = 0; k < levels; ++k)
+    for (int v = 0; v < n; ++v) result.radius[k * n + v] = wall_radius[v];
+  return result;
+}
+
+}  // namespace vesselmesh::volume

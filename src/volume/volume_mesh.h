@@ -1,0 +1,75 @@
+// The volume mesh of a lumen: boundary layer, caps and interior tetrahedra, with the boundary
+// tagged for the solver.
+//
+// Input: the lumen surface (outward, manifold; a remeshed surface is best) and its ends as
+// `analysis::open_ends` finds them (largest first, the order of `vesselmesh info`). Capped
+// ends (flat caps of a closed surface) are cut off and built again like open ends, so every
+// end gets the same layer ending and cap; their tag keeps the cap's label when it has one.
+// Steps: the boundary layer on the wall (boundary_layer.h; none with layers = 0), a cap on
+// each end's inner loop (cap.h), Gmsh's tetrahedra inside the inner surface and the caps
+// (fill.h), each prism cut into three tetrahedra (or kept). Then every cell's volume and the
+// boundary's closure are checked: an inverted cell or an open boundary is an error, never an
+// output.
+// Tags: wall, then one per end, named `inlet` (the largest end, or the one chosen) and
+// `outlet_1`, `outlet_2`, ... in the ends' order, unless names are given. The end's strip of
+// layer faces and its cap carry its tag.
+#pragma once
+
+#include "analysis/open_ends.h"
+#include "mesh/reporter.h"
+#include "mesh/tetmesh.h"
+#include "volume/boundary_layer.h"
+#include "volume/fill.h"
+
+#include <string>
+#include <vector>
+
+namespace vesselmesh::volume {
+
+struct VolumeOptions {
+  BoundaryLayerOptions layer;  // layer.layers = 0: no boundary layer
+  FillAlgorithm algorithm = FillAlgorithm::delaunay;  // deterministic; HXT is not run to run
+  bool keep_prisms = false;
+  int inlet = -1;                      // index into the ends; -1: the largest
+  std::vector<std::string> end_names;  // in the ends' order; empty: inlet, outlet_1, ...
+  int threads = 0;
+};
+
+struct VolumeEnd {
+  std::string name;
+  int tag = 0;
+  Vec3 center = Vec3::Zero();
+  Vec3 normal = Vec3::Zero();
+  double radius = 0.0;
+  bool capped = false;
+  int cap_triangles = 0;  // triangles of the new cap
+};
+
+struct VolumeReport {
+  int layers = 0;
+  int layer_tets = 0, layer_prisms = 0, interior_tets = 0;
+  int shrunk_vertices = 0;     // wall points whose layer is thinner than asked
+  double least_fraction = 1.0;  // of the thickness asked for, and where
+  Vec3 least_at = Vec3::Zero();
+  double min_thickness_ratio = 0.0, max_thickness_ratio = 0.0;  // layer thickness / local radius
+  std::vector<VolumeEnd> ends;
+  int wall_tag = 1;
+};
+
+struct VolumeResult {
+  TetMesh mesh;
+  VolumeReport report;
+  std::vector<double> radius;  // per mesh point: the wall radius under it (layer points), else 0
+};
+
+// `radius`: the local radius (distance map) per surface point.
+VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::OpenEnd>& ends,
+                          const std::vector<double>& radius, const VolumeOptions& options,
+                          const Reporter& reporter = silent_reporter());
+
+// Checks a tetrahedral mesh the way build_volume does before handing it on: every tetrahedron
+// (and prism split) positive, and the boundary triangles exactly the faces used by one cell,
+// oriented outward. Throws InputError (inverted cell, naming it and where) or InternalError.
+void check_volume(const TetMesh& mesh);
+
+}  // namespace vesselmesh::volume

@@ -1,0 +1,121 @@
+#include "volume/boundary_layer.h"
+
+#include "analysis/open_ends.h"
+#include "mesh/error.h"
+#include "synth/shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace vesselmesh::volume {
+namespace {
+
+struct Pipe {
+  TriMesh wall;
+  std::vector<WallEnd> ends;
+};
+
+Pipe pipe(double radius = 3.0, double length = 20.0) {
+  Pipe p;
+  p.wall = synth::cylinder({.radius = radius, .length = length, .resolution = 0.5, .jitter = 0.3});
+  for (const auto& end : analysis::open_ends(p.wall)) p.ends.push_back({end.loop, end.normal});
+  return p;
+}
+
+double axis_distance(const Vec3& p) { return std::hypot(p.x(), p.y()); }
+
+TEST(LayerFractions, UniformAndGeometric) {
+  const auto uniform = layer_fractions(4, 1.0);
+  ASSERT_EQ(uniform.size(), 5u);
+  for (int k = 0; k <= 4; ++k) EXPECT_NEAR(uniform[k], k / 4.0, 1e-15);
+  // Heights 1, 2, 4: fractions 0, 1/7, 3/7, 1.
+  const auto geometric = layer_fractions(3, 2.0);
+  EXPECT_NEAR(geometric[1], 1.0 / 7.0, 1e-15);
+  EXPECT_NEAR(geometric[2], 3.0 / 7.0, 1e-15);
+  EXPECT_DOUBLE_EQ(geometric[3], 1.0);
+}
+
+TEST(BoundaryLayer, PipeLayersAreConcentricAndEndFlush) {
+  // R = 3, thickness 10 % of the radius: the inner surface at r = 2.7, levels at 3 - 0.075 k.
+  const Pipe p = pipe();
+  const std::vector<double> radius(p.wall.points.size(), 3.0);
+  const BoundaryLayer layer = build_boundary_layer(p.wall, radius, p.ends, {});
+  const int n = p.wall.num_points();
+  ASSERT_EQ(layer.levels, 5);
+  ASSERT_EQ(layer.points.size(), 5u * n);
+  EXPECT_EQ(layer.prisms.size(), 4u * p.wall.triangles.size());
+  EXPECT_EQ(layer.shrunk_vertices, 0);
+  double worst = 0.0;
+  for (int k = 0; k < 5; ++k)
+    for (int v = 0; v < n; ++v)
+      worst = std::max(worst, std::abs(axis_distance(layer.points[k * n + v]) - (3.0 - 0.075 * k)));
+  // Smoothed Max normals of a jittered pipe are radial to within about a degree.
+  EXPECT_LT(worst, 0.3 * 0.02) << "levels off their radius by " << worst << " mm";
+  // The ends' loops stay in their planes z = 0 and z = 20.
+  ASSERT_EQ(layer.inner_loops.size(), 2u);
+  for (const auto& loop : layer.inner_loops) {
+    const double z = layer.points[loop.front()].z();
+    EXPECT_TRUE(std::abs(z) < 1e-9 || std::abs(z - 20.0) < 1e-9);
+    for (int v : loop) EXPECT_NEAR(layer.points[v].z(), z, 1e-9);
+  }
+  // Each strip: 2 triangles per loop edge and layer.
+  for (size_t e = 0; e < 2; ++e) EXPECT_EQ(layer.end_strips[e].size(), 2u * 4u * p.ends[e].loop.size());
+}
+
+TEST(BoundaryLayer, GrowthMakesLayersThickerInward) {
+  const Pipe p = pipe();
+  const std::vector<double> radius(p.wall.points.size(), 3.0);
+  const BoundaryLayer layer = build_boundary_layer(p.wall, radius, p.ends, {.layers = 3, .growth = 2.0});
+  const int n = p.wall.num_points();
+  const int v = p.wall.triangles[100][0];
+  const double h1 = (layer.points[n + v] - layer.points[v]).norm();
+  const double h2 = (layer.points[2 * n + v] - layer.points[n + v]).norm();
+  const double h3 = (layer.points[3 * n + v] - layer.points[2 * n + v]).norm();
+  EXPECT_NEAR(h2 / h1, 2.0, 1e-9);
+  EXPECT_NEAR(h3 / h2, 2.0, 1e-9);
+  EXPECT_NEAR(h1 + h2 + h3, 0.3, 1e-9);
+}
+
+TEST(BoundaryLayer, ShrinksSmoothlyWhereColumnsWouldCross) {
+  // A radius three times too large asks for a layer 4.5 mm thick in a 3 mm pipe: the columns
+  // meet at the axis, so the layer must shrink everywhere, stay valid and say so.
+  const Pipe p = pipe();
+  const std::vector<double> radius(p.wall.points.size(), 9.0);
+  const BoundaryLayer layer = build_boundary_layer(p.wall, radius, p.ends, {.thickness_ratio = 0.5});
+  const int n = p.wall.num_points();
+  EXPECT_EQ(layer.shrunk_vertices, n);
+  EXPECT_LT(layer.least_fraction, 3.0 / 4.5);
+  for (int v = 0; v < n; ++v) {
+    EXPECT_LT(layer.thickness[v], 3.0);
+    EXPECT_GT(axis_distance(layer.points[4 * n + v]), 0.0);
+  }
+  for (const Prism& prism : layer.prisms)
+    for (const Tet& t : mesh::split_prism(prism))
+      EXPECT_GT(mesh::tet_volume6(layer.points[t[0]], layer.points[t[1]], layer.points[t[2]], layer.points[t[3]]), 0.0);
+}
+
+TEST(BoundaryLayer, ALayerThatCannotBeBuiltIsAnErrorNamingThePlace) {
+  const Pipe p = pipe();
+  const std::vector<double> radius(p.wall.points.size(), 9.0);
+  try {
+    build_boundary_layer(p.wall, radius, p.ends, {.thickness_ratio = 0.5, .min_thickness_fraction = 0.9});
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot be built near wall point"), std::string::npos) << e.what();
+  }
+}
+
+TEST(BoundaryLayer, RejectsBadOptions) {
+  const Pipe p = pipe();
+  const std::vector<double> radius(p.wall.points.size(), 3.0);
+  EXPECT_THROW(build_boundary_layer(p.wall, radius, p.ends, {.layers = 0}), OptionError);
+  EXPECT_THROW(build_boundary_layer(p.wall, radius, p.ends, {.thickness_ratio = 0.8}), OptionError);
+  EXPECT_THROW(build_boundary_layer(p.wall, radius, p.ends, {.growth = 0.0}), OptionError);
+  std::vector<double> missing = radius;
+  missing[7] = 0.0;
+  EXPECT_THROW(build_boundary_layer(p.wall, missing, p.ends, {}), InputError);
+}
+
+}  // namespace
+}  // namespace vesselmesh::volume
