@@ -104,6 +104,7 @@ Command add_demo_command(CLI::App& parent) {
             const centerline::DistanceMap distance = centerline::distance_map(surface.file.mesh, lines);
             Json meshes = Json::object();
             std::vector<std::pair<std::string, std::string>> remeshed;
+            TriMesh curvature_adapted;  // the wall of stage 5
             for (sizing::SizeKind kind : {sizing::SizeKind::uniform, sizing::SizeKind::distance,
                                           sizing::SizeKind::curvature, sizing::SizeKind::anisotropic}) {
               const std::string name = sizing::size_kind_name(kind);
@@ -116,6 +117,7 @@ Command add_demo_command(CLI::App& parent) {
               const remesh::RemeshResult result =
                   remesh::adapt_to_count(surface.file.mesh, field.metric, kDemoTriangles, options, reporter);
               write_remeshed((folder / ("surface_" + name + ".vtp")).string(), result);
+              if (kind == sizing::SizeKind::curvature) curvature_adapted = result.mesh;
               meshes[name] = remesh_json(result.stats);
               remeshed.emplace_back("surface_" + name + ".vtp",
                                     fmt::format("the {} surface mesh: {} triangles, metric and quality", name,
@@ -125,7 +127,7 @@ Command add_demo_command(CLI::App& parent) {
             // Stage 5: the volume mesh (4 layers, 10 % of the radius) on the curvature-adapted
             // surface.
             reporter.info("stage 5: volume mesh on the curvature-adapted surface");
-            const TriMesh wall = io::read_surface((folder / "surface_curvature.vtp").string()).mesh;
+            const TriMesh& wall = curvature_adapted;
             const auto wall_ends = analysis::open_ends(wall);
             const centerline::DistanceMap wall_distance =
                 centerline::distance_map(wall, centerline::extract(wall, {}, reporter));

@@ -141,9 +141,12 @@ Command add_volume_command(CLI::App& parent) {
               throw InputError(fmt::format("{}: the surface has no open or flat-capped end: a flow domain needs an inlet and "
                                            "an outlet; cut the vessel's ends open",
                                            o->surface.path));
-            const centerline::DistanceMap distance =
-                centerline::distance_map(wall, centerline::extract(wall, {}, reporter));
-            const volume::VolumeResult result = volume::build_volume(wall, surface.ends, distance.radius, options, reporter);
+            // The layer's thickness follows the local radius: the distance map, traced only when
+            // there is a layer.
+            std::vector<double> radius;
+            if (options.layer.layers > 0)
+              radius = centerline::distance_map(wall, centerline::extract(wall, {}, reporter)).radius;
+            const volume::VolumeResult result = volume::build_volume(wall, surface.ends, radius, options, reporter);
             if (format == VolumeFormat::vtu)
               io::write_vtu(o->output, result.mesh, {Field::scalar("radius", result.radius)});
             else

@@ -17,6 +17,17 @@ constexpr int kTriangle3 = 2;  // Gmsh element types
 constexpr int kTetrahedron4 = 4, kPrism6 = 6;
 // TetMesh prisms have the wall triangle facing away from the top; Gmsh's face toward it.
 Prism gmsh_prism(const Prism& p) { return {p[0], p[2], p[1], p[3], p[5], p[4]}; }
+
+// Node tags 1, 2, ... (our index + 1) and xyz coordinates of every point.
+void gmsh_nodes(const std::vector<Vec3>& points, std::vector<std::size_t>& tags, std::vector<double>& coords) {
+  tags.resize(points.size());
+  coords.clear();
+  coords.reserve(3 * points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    tags[i] = i + 1;
+    coords.insert(coords.end(), {points[i].x(), points[i].y(), points[i].z()});
+  }
+}
 }
 
 void write_msh(const std::string& path, const TriMesh& mesh,
@@ -31,13 +42,9 @@ void write_msh(const std::string& path, const TriMesh& mesh,
   GmshSession session;
   call_gmsh(path, [&] {
     gmsh::model::add("vesselmesh");
-    std::vector<std::size_t> node_tags(mesh.points.size());
+    std::vector<std::size_t> node_tags;
     std::vector<double> coords;
-    coords.reserve(mesh.points.size() * 3);
-    for (size_t i = 0; i < mesh.points.size(); ++i) {
-      node_tags[i] = i + 1;
-      coords.insert(coords.end(), {mesh.points[i].x(), mesh.points[i].y(), mesh.points[i].z()});
-    }
+    gmsh_nodes(mesh.points, node_tags, coords);
     for (size_t k = 0; k < distinct.size(); ++k) {
       const int entity = static_cast<int>(k) + 1;
       gmsh::model::addDiscreteEntity(2, entity);
@@ -120,13 +127,9 @@ void write_msh(const std::string& path, const TetMesh& mesh) {
   GmshSession session;
   call_gmsh(path, [&] {
     gmsh::model::add("vesselmesh");
-    std::vector<std::size_t> node_tags(mesh.points.size());
+    std::vector<std::size_t> node_tags;
     std::vector<double> coords;
-    coords.reserve(3 * mesh.points.size());
-    for (size_t i = 0; i < mesh.points.size(); ++i) {
-      node_tags[i] = i + 1;
-      coords.insert(coords.end(), {mesh.points[i].x(), mesh.points[i].y(), mesh.points[i].z()});
-    }
+    gmsh_nodes(mesh.points, node_tags, coords);
     // Surfaces first (entity k + 1 for the k-th tag), then the volume bounded by them.
     std::vector<int> tags;
     for (int tag : mesh.boundary_tags) tags.push_back(tag);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 
 namespace vesselmesh::mesh {
@@ -100,6 +101,30 @@ std::vector<Triangle> tet_boundary(const std::vector<Tet>& tets, int* nonmanifol
   }
   if (nonmanifold) *nonmanifold = many;
   std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<Tet> all_tetrahedra(const TetMesh& m) {
+  std::vector<Tet> all = m.tets;
+  all.reserve(m.tets.size() + 3 * m.prisms.size());
+  for (const Prism& p : m.prisms)
+    for (const Tet& t : split_prism(p)) all.push_back(t);
+  return all;
+}
+
+BoundaryClosure boundary_closure(const TetMesh& m, const std::vector<Tet>& all) {
+  BoundaryClosure out;
+  const std::vector<Triangle> faces = tet_boundary(all, &out.nonmanifold);
+  std::vector<Triangle> boundary;
+  boundary.reserve(m.boundary.size());
+  for (const Triangle& f : m.boundary) boundary.push_back(canonical_rotation(f));
+  std::sort(boundary.begin(), boundary.end());
+  std::vector<Triangle> difference;
+  std::set_difference(faces.begin(), faces.end(), boundary.begin(), boundary.end(), std::back_inserter(difference));
+  out.open_faces = static_cast<int>(difference.size());
+  difference.clear();
+  std::set_difference(boundary.begin(), boundary.end(), faces.begin(), faces.end(), std::back_inserter(difference));
+  out.stray_triangles = static_cast<int>(difference.size());
   return out;
 }
 

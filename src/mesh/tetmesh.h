@@ -74,5 +74,17 @@ Triangle canonical_rotation(const Triangle& f);
 // in canonical rotation, sorted. Faces used by more than two tetrahedra are counted in `nonmanifold`.
 std::vector<Triangle> tet_boundary(const std::vector<Tet>& tets, int* nonmanifold = nullptr);
 
+// Every cell as tetrahedra: the tetrahedra, then each prism's three (split_prism).
+std::vector<Tet> all_tetrahedra(const TetMesh& m);
+
+// How the tagged boundary triangles compare with the faces used by one cell (`all`: the
+// cells as tetrahedra): faces no triangle tags, triangles that are no such face (or face the
+// wrong way), and faces shared by more than two cells.
+struct BoundaryClosure {
+  int open_faces = 0, stray_triangles = 0, nonmanifold = 0;
+  bool closed() const { return open_faces == 0 && stray_triangles == 0 && nonmanifold == 0; }
+};
+BoundaryClosure boundary_closure(const TetMesh& m, const std::vector<Tet>& all);
+
 }  // namespace mesh
 }  // namespace vesselmesh

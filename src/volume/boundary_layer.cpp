@@ -27,15 +27,20 @@ void check_options(const BoundaryLayerOptions& o) {
     throw OptionError("the least thickness fraction must be in (0, 1)");
 }
 
+// Per wall point: the unit normal of its end's plane for loop points, zero elsewhere.
+std::vector<Vec3> end_planes(int n, const std::vector<WallEnd>& ends) {
+  std::vector<Vec3> plane(n, Vec3::Zero());
+  for (const WallEnd& end : ends)
+    for (int v : end.loop) plane[v] = end.normal.normalized();
+  return plane;
+}
+
 // Smoothed inward directions: Max normals, averaged over the one-ring, turned into the end's
 // plane on an end's loop.
-std::vector<Vec3> column_directions(const TriMesh& wall, const mesh::EdgeMap& edges, const std::vector<WallEnd>& ends,
+std::vector<Vec3> column_directions(const TriMesh& wall, const mesh::EdgeMap& edges, const std::vector<Vec3>& plane,
                                     int passes) {
   const int n = wall.num_points();
   std::vector<Vec3> normal = analysis::vertex_normals(wall, analysis::NormalMethod::max);
-  std::vector<Vec3> plane(n, Vec3::Zero());  // the end's normal for loop vertices
-  for (const WallEnd& end : ends)
-    for (int v : end.loop) plane[v] = end.normal.normalized();
   auto into_plane = [&](std::vector<Vec3>& dirs) {
     for (int v = 0; v < n; ++v) {
       if (plane[v].squaredNorm() > 0) dirs[v] -= dirs[v].dot(plane[v]) * plane[v];
@@ -82,7 +87,8 @@ BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double
   const mesh::EdgeMap edges = mesh::build_edge_map(wall);
   BoundaryLayer out;
   out.levels = options.layers + 1;
-  out.direction = column_directions(wall, edges, ends, options.normal_smoothing);
+  const std::vector<Vec3> plane = end_planes(n, ends);
+  out.direction = column_directions(wall, edges, plane, options.normal_smoothing);
   out.target.resize(n);
   for (int v = 0; v < n; ++v) {
     if (!(radius[v] > 0.0 && std::isfinite(radius[v])))
@@ -123,9 +129,6 @@ BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double
   };
   build_strips();
 
-  std::vector<Vec3> plane(n, Vec3::Zero());  // the end's normal for loop vertices
-  for (const WallEnd& end : ends)
-    for (int v : end.loop) plane[v] = end.normal.normalized();
   const mesh::VertexTriangles around = mesh::build_vertex_triangles(wall);
   auto turn_toward_visible = [&](int v) {
     Vec3& d = out.direction[v];

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <iterator>
 #include <limits>
 #include <set>
 #include <span>
@@ -37,19 +36,16 @@ VolumeQuality measure_volume(const TetMesh& m, const std::vector<double>& radius
     ++q.triangles_per_tag[name != m.tag_names.end() ? name->second : fmt::format("tag_{}", tag)];
   }
 
-  // Every cell as tetrahedra, with its layer.
-  std::vector<Tet> all;
-  std::vector<int> layer;
-  for (int t = 0; t < m.num_tets(); ++t) {
-    all.push_back(m.tets[t]);
-    layer.push_back(m.tet_layer.empty() ? -1 : m.tet_layer[t]);
-  }
+  // Every cell as tetrahedra (prisms by their split), with its layer (-1: unknown).
+  const std::vector<Tet> all = mesh::all_tetrahedra(m);
+  std::vector<int> layer(all.size(), -1);
+  for (int t = 0; t < m.num_tets() && !m.tet_layer.empty(); ++t) layer[t] = m.tet_layer[t];
   for (int p = 0; p < m.num_prisms(); ++p) {
     bool inverted = false;
-    for (const Tet& t : mesh::split_prism(m.prisms[p])) {
-      all.push_back(t);
-      layer.push_back(m.prism_layer.empty() ? 1 : m.prism_layer[p]);
-      if (!(mesh::tet_volume6(m, t) > 0)) inverted = true;
+    for (int k = 0; k < 3; ++k) {
+      const size_t i = m.tets.size() + 3 * p + k;
+      layer[i] = m.prism_layer.empty() ? 1 : m.prism_layer[p];
+      if (!(mesh::tet_volume6(m, all[i]) > 0)) inverted = true;
     }
     if (inverted) ++q.inverted;
   }
@@ -73,62 +69,59 @@ VolumeQuality measure_volume(const TetMesh& m, const std::vector<double>& radius
     q.worst_aspect_ratio = std::max(q.worst_aspect_ratio, aspect_ratio(a, b, c, d));
   }
   if (!angles.empty()) {
-    std::sort(angles.begin(), angles.end());
-    q.min_dihedral = angles.front();
-    q.max_dihedral = angles.back();
+    const auto [least, most] = std::minmax_element(angles.begin(), angles.end());
+    q.min_dihedral = *least;
+    q.max_dihedral = *most;
+    std::nth_element(angles.begin(), angles.begin() + angles.size() / 2, angles.end());
     q.median_dihedral = angles[angles.size() / 2];
   }
   if (min_layer < 1e300) q.min_dihedral_layer = min_layer;
   if (min_interior < 1e300) q.min_dihedral_interior = min_interior;
 
-  // Closure: the faces used by one cell against the tagged triangles.
-  int nonmanifold = 0;
-  const std::vector<Triangle> faces = mesh::tet_boundary(all, &nonmanifold);
-  std::vector<Triangle> boundary;
-  for (const Triangle& f : m.boundary) boundary.push_back(mesh::canonical_rotation(f));
-  std::sort(boundary.begin(), boundary.end());
-  std::vector<Triangle> missing, stray;
-  std::set_difference(faces.begin(), faces.end(), boundary.begin(), boundary.end(), std::back_inserter(missing));
-  std::set_difference(boundary.begin(), boundary.end(), faces.begin(), faces.end(), std::back_inserter(stray));
-  q.open_faces = static_cast<int>(missing.size());
-  q.stray_triangles = static_cast<int>(stray.size());
-  q.closed = missing.empty() && stray.empty() && nonmanifold == 0;
+  const mesh::BoundaryClosure closure = mesh::boundary_closure(m, all);
+  q.open_faces = closure.open_faces;
+  q.stray_triangles = closure.stray_triangles;
+  q.closed = closure.closed();
 
-  // Layers per wall triangle: the distinct layer numbers of the cells on each column.
-  const bool columns = (!m.tet_column.empty() || !m.prism_column.empty());
-  if (columns) {
-    std::vector<std::set<int>> seen;
-    std::vector<std::set<int>> column_points;
-    auto add = [&](int column, int level, std::span<const int> corners) {
-      if (column < 0) return;
-      if (static_cast<int>(seen.size()) <= column) seen.resize(column + 1), column_points.resize(column + 1);
-      seen[column].insert(level);
-      column_points[column].insert(corners.begin(), corners.end());
-    };
-    for (int t = 0; t < m.num_tets() && !m.tet_column.empty(); ++t) add(m.tet_column[t], m.tet_layer[t], m.tets[t]);
-    for (int p = 0; p < m.num_prisms() && !m.prism_column.empty(); ++p)
-      add(m.prism_column[p], m.prism_layer[p], m.prisms[p]);
-    q.has_layers = !seen.empty();
-    q.min_layers = std::numeric_limits<int>::max();
-    for (size_t c = 0; c < seen.size(); ++c) {
-      q.min_layers = std::min(q.min_layers, static_cast<int>(seen[c].size()));
-      q.max_layers = std::max(q.max_layers, static_cast<int>(seen[c].size()));
-      if (seen[c].empty() || c >= m.boundary.size()) continue;
-      ++q.wall_triangles;
-      // Thickness: the farthest column point from the wall triangle's plane, over the mean
-      // radius of its corners.
-      if (radius.size() != m.points.size()) continue;
-      const Triangle& f = m.boundary[c];
-      const Vec3 normal = (m.points[f[1]] - m.points[f[0]]).cross(m.points[f[2]] - m.points[f[0]]).normalized();
-      double thickness = 0;
-      for (int v : column_points[c]) thickness = std::max(thickness, std::abs((m.points[v] - m.points[f[0]]).dot(normal)));
-      const double r = (radius[f[0]] + radius[f[1]] + radius[f[2]]) / 3.0;
-      if (!(r > 0)) continue;
-      const double ratio = thickness / r;
-      q.min_thickness_ratio = q.min_thickness_ratio < 0 ? ratio : std::min(q.min_thickness_ratio, ratio);
-      q.max_thickness_ratio = std::max(q.max_thickness_ratio, ratio);
-    }
-    if (!q.has_layers) q.min_layers = 0;
+  // Layers per wall triangle: the distinct layer numbers of the cells on its column, over every
+  // boundary triangle with the tag of a column's (so a wall triangle with no layer counts 0).
+  // Thickness: the farthest column point from the wall triangle's plane, over the mean radius
+  // of its corners.
+  if (m.tet_column.empty() && m.prism_column.empty()) return q;
+  std::vector<std::pair<int, int>> column_layers;  // (column, layer)
+  std::vector<double> thickness(m.boundary.size(), 0.0);
+  auto add = [&](int column, int level, std::span<const int> corners) {
+    if (column < 0 || column >= static_cast<int>(m.boundary.size())) return;
+    column_layers.emplace_back(column, level);
+    const Triangle& f = m.boundary[column];
+    const Vec3 normal = (m.points[f[1]] - m.points[f[0]]).cross(m.points[f[2]] - m.points[f[0]]).normalized();
+    for (int v : corners) thickness[column] = std::max(thickness[column], std::abs((m.points[v] - m.points[f[0]]).dot(normal)));
+  };
+  for (int t = 0; t < m.num_tets() && !m.tet_column.empty(); ++t) add(m.tet_column[t], m.tet_layer[t], m.tets[t]);
+  for (int p = 0; p < m.num_prisms() && !m.prism_column.empty(); ++p) add(m.prism_column[p], m.prism_layer[p], m.prisms[p]);
+  std::sort(column_layers.begin(), column_layers.end());
+  column_layers.erase(std::unique(column_layers.begin(), column_layers.end()), column_layers.end());
+  std::vector<int> layers_on(m.boundary.size(), 0);
+  std::set<int> wall_tags;
+  for (const auto& [column, level] : column_layers) {
+    ++layers_on[column];
+    wall_tags.insert(m.boundary_tags.empty() ? 0 : m.boundary_tags[column]);
+  }
+  q.has_layers = !column_layers.empty();
+  if (!q.has_layers) return q;
+  q.min_layers = std::numeric_limits<int>::max();
+  for (size_t c = 0; c < m.boundary.size(); ++c) {
+    if (!wall_tags.count(m.boundary_tags.empty() ? 0 : m.boundary_tags[c])) continue;
+    ++q.wall_triangles;
+    q.min_layers = std::min(q.min_layers, layers_on[c]);
+    q.max_layers = std::max(q.max_layers, layers_on[c]);
+    if (radius.size() != m.points.size() || layers_on[c] == 0) continue;
+    const Triangle& f = m.boundary[c];
+    const double r = (radius[f[0]] + radius[f[1]] + radius[f[2]]) / 3.0;
+    if (!(r > 0)) continue;
+    const double ratio = thickness[c] / r;
+    q.min_thickness_ratio = q.min_thickness_ratio < 0 ? ratio : std::min(q.min_thickness_ratio, ratio);
+    q.max_thickness_ratio = std::max(q.max_thickness_ratio, ratio);
   }
   return q;
 }

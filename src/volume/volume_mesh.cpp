@@ -25,35 +25,22 @@ Wall extract_wall(const TriMesh& surface, const std::vector<analysis::OpenEnd>& 
   std::vector<char> cap(surface.triangles.size(), 0);
   for (const auto& end : ends)
     for (int t : end.cap_triangles) cap[t] = 1;
+  // Points keep their surface order, so the numbering does not depend on the triangles'.
   Wall wall;
   wall.new_of.assign(surface.points.size(), -1);
+  for (size_t t = 0; t < surface.triangles.size(); ++t)
+    if (!cap[t])
+      for (int v : surface.triangles[t]) wall.new_of[v] = 0;
+  for (int v = 0; v < surface.num_points(); ++v) {
+    if (wall.new_of[v] < 0) continue;
+    wall.new_of[v] = static_cast<int>(wall.old_of.size());
+    wall.old_of.push_back(v);
+    wall.mesh.points.push_back(surface.points[v]);
+  }
   for (size_t t = 0; t < surface.triangles.size(); ++t) {
     if (cap[t]) continue;
-    Triangle f = surface.triangles[t];
-    for (int& v : f) {
-      if (wall.new_of[v] < 0) {
-        wall.new_of[v] = static_cast<int>(wall.old_of.size());
-        wall.old_of.push_back(v);
-      }
-      v = wall.new_of[v];
-    }
-    wall.mesh.triangles.push_back(f);
-  }
-  // Points in their surface order, so that the numbering does not depend on the triangles'.
-  std::vector<int> order(wall.old_of.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return wall.old_of[a] < wall.old_of[b]; });
-  std::vector<int> renumber(order.size());
-  for (size_t i = 0; i < order.size(); ++i) renumber[order[i]] = static_cast<int>(i);
-  std::vector<int> old_of(order.size());
-  for (size_t i = 0; i < order.size(); ++i) old_of[renumber[i]] = wall.old_of[i];
-  wall.old_of = old_of;
-  for (Triangle& f : wall.mesh.triangles)
-    for (int& v : f) v = renumber[v];
-  std::fill(wall.new_of.begin(), wall.new_of.end(), -1);
-  for (size_t i = 0; i < wall.old_of.size(); ++i) {
-    wall.new_of[wall.old_of[i]] = static_cast<int>(i);
-    wall.mesh.points.push_back(surface.points[wall.old_of[i]]);
+    const Triangle& f = surface.triangles[t];
+    wall.mesh.triangles.push_back({wall.new_of[f[0]], wall.new_of[f[1]], wall.new_of[f[2]]});
   }
   if (wall.mesh.triangles.empty()) throw InputError("the surface has no wall triangles");
 
@@ -128,38 +115,29 @@ void assign_tags(const std::vector<analysis::OpenEnd>& ends, const VolumeOptions
 }  // namespace
 
 void check_volume(const TetMesh& m) {
-  std::vector<Tet> all = m.tets;
-  for (int t = 0; t < m.num_tets(); ++t) {
-    const Tet& tet = m.tets[t];
-    if (!(mesh::tet_volume6(m, tet) > 0.0)) {
-      const Vec3 at = (m.points[tet[0]] + m.points[tet[1]] + m.points[tet[2]] + m.points[tet[3]]) / 4.0;
-      throw InputError(fmt::format("tetrahedron {} at {} is inverted or flat (6 V = {:.3g})", t, mesh::format_point(at),
-                                   mesh::tet_volume6(m, tet)));
-    }
+  const std::vector<Tet> all = mesh::all_tetrahedra(m);
+  for (size_t i = 0; i < all.size(); ++i) {
+    const Tet& tet = all[i];
+    if (mesh::tet_volume6(m, tet) > 0.0) continue;
+    const Vec3 at = (m.points[tet[0]] + m.points[tet[1]] + m.points[tet[2]] + m.points[tet[3]]) / 4.0;
+    const std::string cell = i < m.tets.size() ? fmt::format("tetrahedron {}", i)
+                                               : fmt::format("prism {}", (i - m.tets.size()) / 3);
+    throw InputError(fmt::format("{} at {} is inverted or flat (6 V = {:.3g})", cell, mesh::format_point(at),
+                                 mesh::tet_volume6(m, tet)));
   }
-  for (int p = 0; p < m.num_prisms(); ++p) {
-    for (const Tet& tet : mesh::split_prism(m.prisms[p])) {
-      if (!(mesh::tet_volume6(m, tet) > 0.0))
-        throw InputError(fmt::format("prism {} at {} is inverted or flat", p, mesh::format_point(m.points[m.prisms[p][0]])));
-      all.push_back(tet);
-    }
-  }
-  int nonmanifold = 0;
-  const std::vector<Triangle> faces = mesh::tet_boundary(all, &nonmanifold);
-  std::vector<Triangle> boundary;
-  for (const Triangle& f : m.boundary) boundary.push_back(mesh::canonical_rotation(f));
-  std::sort(boundary.begin(), boundary.end());
-  // The prisms' quadrilateral sides appear as the triangles of their split, which is how
-  // the boundary lists them.
-  if (nonmanifold > 0 || faces != boundary)
-    throw InternalError(fmt::format("the volume's boundary is not closed as tagged: {} faces used by one cell, {} "
-                                    "boundary triangles, {} faces shared by more than two cells",
-                                    faces.size(), boundary.size(), nonmanifold));
+  // The prisms' quadrilateral sides appear as the triangles of their split, which is how the
+  // boundary lists them.
+  const mesh::BoundaryClosure closure = mesh::boundary_closure(m, all);
+  if (!closure.closed())
+    throw InternalError(fmt::format("the volume's boundary is not closed as tagged: {} faces of one cell untagged, {} "
+                                    "tagged triangles that are no such face, {} faces shared by more than two cells",
+                                    closure.open_faces, closure.stray_triangles, closure.nonmanifold));
 }
 
 VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::OpenEnd>& ends,
                           const std::vector<double>& radius, const VolumeOptions& options, const Reporter& reporter) {
-  VM_CHECK(radius.size() == surface.points.size(), "build_volume: one radius per surface point");
+  VM_CHECK(radius.size() == surface.points.size() || (radius.empty() && options.layer.layers == 0),
+           "build_volume: one radius per surface point (none needed without a layer)");
   if (ends.empty())
     throw InputError("the surface has no ends (no boundary loop and no flat cap): a flow domain needs an inlet "
                      "and an outlet; cut the vessel's ends open or cap them flat");
@@ -169,7 +147,7 @@ VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::Op
   const Wall wall = extract_wall(surface, ends);
   const int n = wall.mesh.num_points();
   std::vector<double> wall_radius(n);
-  for (int v = 0; v < n; ++v) wall_radius[v] = radius[wall.old_of[v]];
+  for (int v = 0; v < n && !radius.empty(); ++v) wall_radius[v] = radius[wall.old_of[v]];
 
   // Layer (or the wall itself) and the inner loops the caps close.
   std::vector<Vec3> points;

@@ -62,7 +62,7 @@ struct VolumeResult {
   std::vector<double> radius;  // per mesh point: the wall radius under it (layer points), else 0
 };
 
-// `radius`: the local radius (distance map) per surface point.
+// `radius`: the local radius (distance map) per surface point; may be empty with layers = 0.
 VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::OpenEnd>& ends,
                           const std::vector<double>& radius, const VolumeOptions& options,
                           const Reporter& reporter = silent_reporter());

@@ -58,7 +58,9 @@ TEST(Quality, LayersPerColumnAndThickness) {
   // The wall triangle first (the column's index), then the rest.
   std::stable_partition(m.boundary.begin(), m.boundary.end(),
                         [](const Triangle& f) { return f[0] < 3 && f[1] < 3 && f[2] < 3; });
-  m.boundary_tags.assign(m.boundary.size(), 1);
+  // Tag 1 on the wall triangle, 2 on the rest.
+  m.boundary_tags.assign(m.boundary.size(), 2);
+  m.boundary_tags[0] = 1;
   const std::vector<double> radius(m.points.size(), 2.0);
   const VolumeQuality q = measure_volume(m, radius);
   EXPECT_TRUE(q.closed);
@@ -68,6 +70,10 @@ TEST(Quality, LayersPerColumnAndThickness) {
   EXPECT_NEAR(q.min_thickness_ratio, 0.1, 1e-12);
   EXPECT_GT(q.min_dihedral_layer, 0.0);
   EXPECT_EQ(q.min_dihedral_interior, -1.0);
+  EXPECT_EQ(q.wall_triangles, 1);
+  // A wall-tagged triangle with no cells standing on it counts as a column of no layer.
+  m.boundary_tags[1] = 1;
+  EXPECT_EQ(measure_volume(m, radius).min_layers, 0);
 }
 
 }  // namespace
