@@ -83,6 +83,9 @@ int run_action(const Action& action, const std::string& command) {
   } catch (const OptionError& e) {
     fmt::print(stderr, "vesselmesh {}: error: {}\n", command, e.what());
     return 2;
+  } catch (const ComputationError& e) {
+    fmt::print(stderr, "vesselmesh {}: error: {}\n", command, e.what());
+    return 1;
   } catch (const std::bad_alloc&) {
     fmt::print(stderr, "vesselmesh {}: error: out of memory\n", command);
     return 1;

@@ -34,6 +34,7 @@ Command add_size_command(CLI::App& parent);
 Command add_remesh_command(CLI::App& parent);
 Command add_volume_command(CLI::App& parent);
 Command add_quality_command(CLI::App& parent);
+Command add_simulate_command(CLI::App& parent);
 Command add_synth_command(CLI::App& parent);
 Command add_demo_command(CLI::App& parent);
 

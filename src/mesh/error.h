@@ -4,6 +4,7 @@
 // InputError: the input data (a file, a mesh handed in) cannot be used.   CLI exit code 2.
 // OptionError: an option or parameter is out of its domain.                CLI exit code 2.
 // InternalError: an invariant of ours broke (a bug).                       CLI exit code 1.
+// ComputationError: a computation on valid input failed (a diverging flow). CLI exit code 1.
 #pragma once
 
 #include <stdexcept>
@@ -27,6 +28,11 @@ class OptionError : public Error {
 };
 
 class InternalError : public Error {
+ public:
+  using Error::Error;
+};
+
+class ComputationError : public Error {
  public:
   using Error::Error;
 };

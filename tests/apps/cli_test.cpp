@@ -67,7 +67,7 @@ std::string last_line(const std::string& text) {
 TEST(Cli, HelpListsTheCommands) {
   const RunResult r = run({"--help"});
   EXPECT_EQ(r.code, 0);
-  for (const char* command : {"info", "synth", "demo", "volume", "quality"}) EXPECT_NE(r.out.find(command), std::string::npos) << command;
+  for (const char* command : {"info", "synth", "demo", "volume", "quality", "simulate"}) EXPECT_NE(r.out.find(command), std::string::npos) << command;
   const RunResult info = run({"info", "--help"});
   EXPECT_EQ(info.code, 0);
   EXPECT_NE(info.out.find("--units"), std::string::npos);
@@ -358,6 +358,68 @@ TEST(Cli, VolumeWritesTaggedMeshesThatQualityReadsBack) {
   EXPECT_NE(last_line(closed.err).find("no open or flat-capped end"), std::string::npos) << closed.err;
   EXPECT_EQ(run({"quality", tmp.path("p.stl")}).code, 2);
   EXPECT_EQ(tmp.files(), (std::vector<std::string>{"p.stl", "s.stl", "v.msh", "v.vtu"}));
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The pulsatile example case, run for three steps on a small pipe: every output written and
+// named in the collections; a case naming a tag the mesh lacks stops before any work.
+TEST(Cli, SimulateRunsTheExampleCase) {
+  test::TemporaryFolder tmp;
+  ASSERT_EQ(run({"synth", "cylinder", "--radius", "2", "--length", "8", "--resolution", "0.5", "-o", tmp.path("p.stl")}).code, 0);
+  ASSERT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("pipe.msh"), "-q"}).code, 0);
+  std::string text = read_text(std::string(VESSELMESH_EXAMPLES_DIR) + "/pipe_pulsatile.toml");
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  };
+  replace("../build/pipe.msh", "pipe.msh");
+  replace("cycles = 2", "end = 0.015");
+  replace("period = 0.8", "");
+  replace("save_every = 10", "save_every = 2");
+  replace("waveform = \"pulse.csv\"", "waveform = \"" + std::string(VESSELMESH_EXAMPLES_DIR) + "/pulse.csv\"");
+  test::write_bytes(tmp.path("case.toml"), text);
+
+  const RunResult r = run({"simulate", tmp.path("case.toml"), "-o", tmp.path("out"), "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = r.json();
+  EXPECT_EQ(j["status"], "completed");
+  EXPECT_EQ(j["steps"].get<int>(), 3);
+  EXPECT_EQ(j["saved"].get<int>(), 2);  // step 2 and the last
+  EXPECT_EQ(j["dofs"].get<int>(), 4 * j["points"].get<int>());
+  EXPECT_NE(r.err.find("scaled by 0.001 to metres"), std::string::npos) << r.err;
+  for (const char* file : {"fluid.pvd", "wall.pvd", "log.csv", "summary.json", "fluid_000000.vtu", "fluid_000001.vtu",
+                           "wall_000000.vtp", "wall_000001.vtp"})
+    EXPECT_TRUE(std::filesystem::exists(tmp.path(std::string("out/") + file))) << file;
+  EXPECT_NE(read_text(tmp.path("out/wall.pvd")).find("file=\"wall_000001.vtp\""), std::string::npos);
+  const Json summary = Json::parse(read_text(tmp.path("out/summary.json")));
+  EXPECT_EQ(summary["units"]["pressure"], "Pa");
+  EXPECT_EQ(summary["units"]["points"], "mm");
+  const std::string log = read_text(tmp.path("out/log.csv"));
+  EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 4) << log;  // header and three steps
+  EXPECT_NE(log.find("outlet_1_flux_m3_s"), std::string::npos);
+  // The wall carries the wss arrays.
+  const io::SurfaceData wall = io::read_vtk_surface(tmp.path("out/wall_000001.vtp"), io::VtkFormat::vtp);
+  bool has_wss = false, has_magnitude = false;
+  for (const Field& f : wall.point_data) {
+    has_wss |= f.name == "wss" && f.components == 3;
+    has_magnitude |= f.name == "wss_magnitude";
+  }
+  EXPECT_TRUE(has_wss && has_magnitude);
+
+  // A tag the mesh does not have: exit 2, the tag named, nothing written.
+  replace("tag = \"outlet_1\"", "tag = \"outlet_9\"");
+  test::write_bytes(tmp.path("bad.toml"), text);
+  const RunResult bad = run({"simulate", tmp.path("bad.toml"), "-o", tmp.path("bad-out")});
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(last_line(bad.err).find("\"outlet_9\" is not in the mesh"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path("bad-out")));
 }
 
 TEST(Cli, DemoWritesItsOutputs) {

@@ -1,0 +1,299 @@
+#include "flow/case.h"
+
+#include "io/atomic_file.h"
+#include "io/units.h"
+#include "mesh/error.h"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+namespace vesselmesh::flow {
+
+Waveform::Waveform(std::vector<double> times, std::vector<double> values)
+    : times_(std::move(times)), values_(std::move(values)) {
+  VM_CHECK(times_.size() == values_.size() && !times_.empty(), "waveform samples");
+}
+
+Waveform Waveform::constant(double value) { return Waveform({0.0}, {value}); }
+
+Waveform Waveform::read_csv(const std::string& path) {
+  const std::string text = io::read_file(path);
+  std::istringstream in(text);
+  std::string line;
+  std::vector<double> times, values;
+  int number = 0;
+  bool header = false;
+  while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const auto first = line.find_first_not_of(" \t");
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::replace(line.begin(), line.end(), ';', ' ');
+    std::istringstream fields(line);
+    double t = 0.0, q = 0.0;
+    std::string rest;
+    if (!(fields >> t >> q) || (fields >> rest)) {
+      if (times.empty() && !header) {  // a header line before the first row
+        header = true;
+        continue;
+      }
+      throw InputError(fmt::format("{}:{}: expected two numbers (time in s, flow in mL/s), found \"{}\"",
+                                   path, number, line));
+    }
+    if (!std::isfinite(t) || !std::isfinite(q))
+      throw InputError(fmt::format("{}:{}: time and flow must be finite numbers", path, number));
+    if (!times.empty() && t <= times.back())
+      throw InputError(fmt::format("{}:{}: times must increase (time {} s follows {} s)", path, number, t,
+                                   times.back()));
+    times.push_back(t);
+    values.push_back(q);
+  }
+  if (times.size() < 2)
+    throw InputError(fmt::format("{}: a waveform needs at least two rows of time (s), flow (mL/s)", path));
+  return Waveform(std::move(times), std::move(values));
+}
+
+double Waveform::operator()(double t) const {
+  if (times_.size() == 1) return values_[0];
+  const double t0 = times_.front(), span = period();
+  double s = std::fmod(t - t0, span);
+  if (s < 0.0) s += span;
+  s += t0;
+  const auto it = std::upper_bound(times_.begin(), times_.end(), s);
+  const size_t j = std::clamp<size_t>(static_cast<size_t>(it - times_.begin()), 1, times_.size() - 1);
+  const double w = (s - times_[j - 1]) / (times_[j] - times_[j - 1]);
+  return (1.0 - w) * values_[j - 1] + w * values_[j];
+}
+
+std::string to_string(BoundaryType type) {
+  switch (type) {
+    case BoundaryType::velocity: return "velocity";
+    case BoundaryType::traction: return "traction";
+    case BoundaryType::resistance: return "resistance";
+    case BoundaryType::wall: return "wall";
+  }
+  return "?";
+}
+
+namespace {
+
+using View = toml::node_view<const toml::node>;
+
+struct Reader {
+  std::string path;
+
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+    throw InputError(fmt::format("{}: {}: {}", path, key, what));
+  }
+
+  double number(const View& node, const std::string& key, double fallback,
+                bool positive = true) const {
+    if (!node) return fallback;
+    const auto value = node.value<double>();
+    if (!value || !std::isfinite(*value)) fail(key, "expected a number");
+    if (positive && *value <= 0.0) fail(key, fmt::format("must be positive (found {})", *value));
+    return *value;
+  }
+
+  int integer(const View& node, const std::string& key, int fallback,
+              int least) const {
+    if (!node) return fallback;
+    const auto value = node.value<int64_t>();
+    if (!value || !node.is_integer()) fail(key, "expected an integer");
+    if (*value < least || *value > 1000000000) fail(key, fmt::format("must be at least {} (found {})", least, *value));
+    return static_cast<int>(*value);
+  }
+
+  std::string text(const View& node, const std::string& key,
+                   const std::string& fallback) const {
+    if (!node) return fallback;
+    const auto value = node.value<std::string>();
+    if (!value || !node.is_string()) fail(key, "expected a string");
+    return *value;
+  }
+
+  bool flag(const View& node, const std::string& key, bool fallback) const {
+    if (!node) return fallback;
+    const auto value = node.value<bool>();
+    if (!value || !node.is_boolean()) fail(key, "expected true or false");
+    return *value;
+  }
+
+  void known_keys(const toml::table& table, const std::string& where, std::initializer_list<const char*> keys) const {
+    for (const auto& [key, value] : table) {
+      (void)value;
+      const std::string name(key.str());
+      if (std::none_of(keys.begin(), keys.end(), [&](const char* k) { return name == k; })) {
+        std::string list;
+        for (const char* k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
+        fail(where.empty() ? name : where + "." + name, fmt::format("unknown key (known here: {})", list));
+      }
+    }
+  }
+};
+
+std::string resolve(const std::string& base, const std::string& file) {
+  namespace fs = std::filesystem;
+  const fs::path p(file);
+  if (p.is_absolute()) return file;
+  return (fs::path(base).parent_path() / p).lexically_normal().string();
+}
+
+}  // namespace
+
+FlowCase parse_case(const std::string& text, const std::string& path) {
+  toml::table parsed;
+  try {
+    parsed = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(fmt::format("{}:{}:{}: {}", path, e.source().begin.line, e.source().begin.column,
+                                 std::string(e.description())));
+  }
+  const toml::table& root = parsed;
+  const Reader r{path};
+  FlowCase c;
+  c.path = path;
+  r.known_keys(root, "", {"mesh", "length_unit", "fluid", "time", "boundary", "solver"});
+
+  const std::string mesh = r.text(root["mesh"], "mesh", "");
+  if (mesh.empty()) r.fail("mesh", "missing: name the volume mesh (MSH 4.1 from `vesselmesh volume`)");
+  c.mesh = resolve(path, mesh);
+  c.length_unit = r.text(root["length_unit"], "length_unit", "mm");
+  try {
+    c.length_scale = io::millimetres_per(io::parse_unit(c.length_unit)) * 1e-3;
+  } catch (const OptionError& e) {
+    r.fail("length_unit", e.what());
+  }
+
+  const View fluid = root["fluid"];
+  if (fluid && !fluid.is_table()) r.fail("fluid", "expected a table [fluid]");
+  if (fluid) r.known_keys(*fluid.as_table(), "fluid", {"density", "viscosity"});
+  c.density = r.number(fluid["density"], "fluid.density", c.density);
+  c.viscosity = r.number(fluid["viscosity"], "fluid.viscosity", c.viscosity);
+
+  const View time = root["time"];
+  if (time && !time.is_table()) r.fail("time", "expected a table [time]");
+  if (time)
+    r.known_keys(*time.as_table(), "time",
+                 {"steady", "dt", "end", "cycles", "period", "save_every", "picard", "steady_tolerance",
+                  "steady_iterations"});
+  c.steady = r.flag(time["steady"], "time.steady", false);
+  c.steady_tolerance = r.number(time["steady_tolerance"], "time.steady_tolerance", c.steady_tolerance);
+  c.steady_iterations = r.integer(time["steady_iterations"], "time.steady_iterations", c.steady_iterations, 1);
+  c.picard = r.integer(time["picard"], "time.picard", 0, 0);
+  if (!c.steady) {
+    if (!time["dt"]) r.fail("time.dt", "missing: an unsteady case needs the time step in s");
+    c.dt = r.number(time["dt"], "time.dt", c.dt);
+    if (time["end"] && time["cycles"]) r.fail("time", "give `end` or `cycles` (with `period`), not both");
+    if (time["cycles"]) {
+      const double cycles = r.number(time["cycles"], "time.cycles", 1.0);
+      if (!time["period"]) r.fail("time.period", "missing: `cycles` needs the period in s");
+      c.end = cycles * r.number(time["period"], "time.period", 1.0);
+    } else {
+      if (!time["end"]) r.fail("time.end", "missing: give the end time in s (or cycles and period)");
+      c.end = r.number(time["end"], "time.end", c.end);
+    }
+    c.save_every = r.integer(time["save_every"], "time.save_every", c.save_every, 1);
+  }
+
+  const View boundaries = root["boundary"];
+  if (!boundaries || !boundaries.is_array_of_tables())
+    r.fail("boundary", "missing: one [[boundary]] table per tag of the mesh");
+  std::set<std::string> seen;
+  int index = 0;
+  for (const toml::node& node : *boundaries.as_array()) {
+    const toml::table& table = *node.as_table();
+    const std::string where = fmt::format("boundary[{}]", index++);
+    r.known_keys(table, where, {"tag", "type", "profile", "flow", "waveform", "resistance", "backflow", "harmonics"});
+    const View b(node);
+    BoundaryCondition bc;
+    bc.tag = r.text(b["tag"], where + ".tag", "");
+    if (bc.tag.empty()) r.fail(where + ".tag", "missing: the mesh tag this condition applies to");
+    if (!seen.insert(bc.tag).second) r.fail(where + ".tag", fmt::format("tag \"{}\" has two conditions", bc.tag));
+    const std::string type = r.text(b["type"], where + ".type", "");
+    if (type == "velocity") bc.type = BoundaryType::velocity;
+    else if (type == "traction") bc.type = BoundaryType::traction;
+    else if (type == "resistance") bc.type = BoundaryType::resistance;
+    else if (type == "wall") bc.type = BoundaryType::wall;
+    else r.fail(where + ".type", fmt::format("\"{}\": expected velocity, traction, resistance or wall", type));
+
+    const auto only_for = [&](const char* key, BoundaryType allowed) {
+      if (b[key] && bc.type != allowed)
+        r.fail(where + "." + key, fmt::format("not used by a {} boundary", to_string(bc.type)));
+    };
+    only_for("profile", BoundaryType::velocity);
+    only_for("flow", BoundaryType::velocity);
+    only_for("waveform", BoundaryType::velocity);
+    only_for("resistance", BoundaryType::resistance);
+    only_for("harmonics", BoundaryType::velocity);
+    if (b["backflow"] && bc.type != BoundaryType::traction && bc.type != BoundaryType::resistance)
+      r.fail(where + ".backflow", "only traction and resistance boundaries have backflow stabilization");
+
+    if (bc.type == BoundaryType::velocity) {
+      const std::string profile = r.text(b["profile"], where + ".profile", "parabolic");
+      if (profile == "parabolic") bc.profile = Profile::parabolic;
+      else if (profile == "plug") bc.profile = Profile::plug;
+      else if (profile == "womersley") bc.profile = Profile::womersley;
+      else r.fail(where + ".profile", fmt::format("\"{}\": expected parabolic, plug or womersley", profile));
+      if (b["harmonics"] && bc.profile != Profile::womersley)
+        r.fail(where + ".harmonics", "only a womersley profile has harmonics");
+      bc.harmonics = r.integer(b["harmonics"], where + ".harmonics", bc.harmonics, 1);
+      if (b["flow"] && b["waveform"]) r.fail(where, "give `flow` or `waveform`, not both");
+      if (b["waveform"]) {
+        bc.waveform_file = resolve(path, r.text(b["waveform"], where + ".waveform", ""));
+        bc.flow = Waveform::read_csv(bc.waveform_file);
+      } else if (b["flow"]) {
+        bc.flow = Waveform::constant(r.number(b["flow"], where + ".flow", 0.0, false));
+      } else {
+        r.fail(where, "a velocity boundary needs `flow` (mL/s) or `waveform` (CSV: time s, flow mL/s)");
+      }
+    }
+    if (bc.type == BoundaryType::resistance) {
+      if (!b["resistance"]) r.fail(where + ".resistance", "missing: the resistance in Pa s/m3");
+      bc.resistance = r.number(b["resistance"], where + ".resistance", 0.0);
+    }
+    if (b["backflow"]) c.backflow = r.number(b["backflow"], where + ".backflow", 1.0, false);
+    c.boundaries.push_back(std::move(bc));
+  }
+
+  const View solver = root["solver"];
+  if (solver && !solver.is_table()) r.fail("solver", "expected a table [solver]");
+  if (solver) r.known_keys(*solver.as_table(), "solver", {"petsc_options"});
+  c.petsc_options = r.text(solver["petsc_options"], "solver.petsc_options", "");
+  return c;
+}
+
+FlowCase read_case(const std::string& path) { return parse_case(io::read_file(path), path); }
+
+void check_tags(const FlowCase& flow_case, const std::vector<std::string>& mesh_tags) {
+  const std::set<std::string> in_mesh(mesh_tags.begin(), mesh_tags.end());
+  std::set<std::string> in_case;
+  for (const BoundaryCondition& b : flow_case.boundaries) in_case.insert(b.tag);
+  const auto list = [](const std::set<std::string>& s) {
+    std::string out;
+    for (const std::string& t : s) out += (out.empty() ? "" : ", ") + t;
+    return out;
+  };
+  for (const std::string& t : in_case)
+    if (!in_mesh.count(t))
+      throw InputError(fmt::format("{}: boundary tag \"{}\" is not in the mesh {} (its tags: {})", flow_case.path, t,
+                                   flow_case.mesh, list(in_mesh)));
+  for (const std::string& t : in_mesh)
+    if (!in_case.count(t))
+      throw InputError(fmt::format("{}: the mesh's boundary tag \"{}\" has no condition: add a [[boundary]] with "
+                                   "tag = \"{}\" (the case names: {})",
+                                   flow_case.path, t, t, list(in_case)));
+  bool has_velocity = false;
+  for (const BoundaryCondition& b : flow_case.boundaries) has_velocity |= b.type == BoundaryType::velocity;
+  if (!has_velocity)
+    throw InputError(fmt::format("{}: no velocity boundary: the flow needs at least one inlet with a flow", flow_case.path));
+}
+
+}  // namespace vesselmesh::flow

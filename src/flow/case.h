@@ -1,0 +1,85 @@
+// The flow case: a TOML file naming the mesh, the fluid, the time stepping, one condition per
+// boundary tag and the solver's PETSc options. The keys below are a contract (tests, examples
+// and users' scripts rely on them):
+//
+//   mesh = "volume.msh"        # from `vesselmesh volume`; relative to the case file
+//   length_unit = "mm"         # the mesh's unit; the solver works in SI
+//   [fluid]    density = 1060.0 (kg/m3), viscosity = 0.0035 (Pa s)
+//   [time]     steady = false; dt (s); end (s) or cycles with period (s); save_every (steps)
+//   [[boundary]] tag = "inlet"; type = "velocity" | "traction" | "resistance" | "wall";
+//              profile = "parabolic" | "plug" | "womersley"; flow = 5.0 (mL/s) or waveform = "inlet.csv"
+//              (time s, flow mL/s, repeated with its period); resistance = R (Pa s/m3)
+//   [solver]   petsc_options = "..." (PETSc's options, applied after the defaults)
+// Added keys: [boundary] harmonics (womersley: the waveform's Fourier harmonics kept, default
+// 20); [time] picard (extra Oseen iterations per step, default 0), steady_tolerance
+// (1e-6), steady_iterations (50); [boundary] backflow (the traction boundaries' backflow
+// stabilization coefficient, default 1).
+// A positive flow enters the domain, a negative one leaves it.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vesselmesh::flow {
+
+// A flow rate in time: linear between samples, repeated with `period` (the samples' span).
+class Waveform {
+ public:
+  Waveform() = default;
+  Waveform(std::vector<double> times, std::vector<double> values);
+  static Waveform constant(double value);
+  // A CSV of `time, value` rows (a header line and # comments allowed); InputError naming the
+  // file and line for anything else.
+  static Waveform read_csv(const std::string& path);
+  double operator()(double t) const;
+  double period() const { return times_.size() < 2 ? 0.0 : times_.back() - times_.front(); }
+  int samples() const { return static_cast<int>(times_.size()); }
+
+ private:
+  std::vector<double> times_, values_;
+};
+
+enum class BoundaryType { velocity, traction, resistance, wall };
+enum class Profile { parabolic, plug, womersley };
+
+struct BoundaryCondition {
+  std::string tag;
+  BoundaryType type = BoundaryType::wall;
+  Profile profile = Profile::parabolic;
+  Waveform flow;             // mL/s, positive into the domain (velocity)
+  std::string waveform_file;  // where `flow` came from, if a file
+  double resistance = 0.0;    // Pa s / m3 (resistance)
+  int harmonics = 20;         // womersley: Fourier harmonics of the waveform kept
+};
+
+struct FlowCase {
+  std::string path;  // the case file
+  std::string mesh;  // resolved against the case file's folder
+  std::string length_unit = "mm";
+  double length_scale = 1e-3;  // metres per mesh unit
+  double density = 1060.0, viscosity = 0.0035;
+  bool steady = false;
+  double dt = 1e-3, end = 1.0;
+  int save_every = 10;
+  int picard = 0;
+  double steady_tolerance = 1e-6;
+  int steady_iterations = 50;
+  double backflow = 1.0;
+  std::vector<BoundaryCondition> boundaries;
+  std::string petsc_options;
+};
+
+std::string to_string(BoundaryType type);
+
+// Reads and checks a case file; every mistake is an InputError naming the file, the key and
+// what is accepted. The mesh is not read here.
+FlowCase read_case(const std::string& path);
+// The same from TOML text (`path` names it in messages and resolves the relative paths).
+FlowCase parse_case(const std::string& text, const std::string& path);
+
+// Checks the case's tags against the mesh's: a tag of the case absent from the mesh, or a tag
+// of the mesh without a condition, is an InputError listing both sets.
+void check_tags(const FlowCase& flow_case, const std::vector<std::string>& mesh_tags);
+
+}  // namespace vesselmesh::flow

@@ -1,0 +1,192 @@
+#include "flow/linear_solver.h"
+
+#include "mesh/error.h"
+
+#include <fmt/format.h>
+#include <petscksp.h>
+
+#include <cstdlib>
+#include <cstring>
+
+namespace vesselmesh::flow {
+namespace {
+
+// PETSc reports errors through a handler: ours keeps the first message of the chain and returns
+// the code, so that a failure becomes an exception with PETSc's words instead of a traceback.
+thread_local std::string petsc_message;
+
+PetscErrorCode keep_message(MPI_Comm, int, const char*, const char*, PetscErrorCode n, PetscErrorType p,
+                            const char* message, void*) {
+  if (p == PETSC_ERROR_INITIAL) petsc_message = message ? message : "";
+  return n;
+}
+
+void check(PetscErrorCode code, const char* what) {
+  if (code == 0) return;
+  std::string text = petsc_message;
+  petsc_message.clear();
+  if (text.empty()) {
+    const char* generic = nullptr;
+    PetscErrorMessage(code, &generic, nullptr);
+    text = generic ? generic : "unknown error";
+  }
+  throw InternalError(fmt::format("PETSc failed in {}: {}", what, text));
+}
+
+// PETSc (and MPI under it) start once per process and end when it exits.
+void ensure_petsc() {
+  static const bool started = [] {
+    PetscBool initialized = PETSC_FALSE;
+    PetscInitialized(&initialized);
+    if (!initialized) {
+      if (PetscInitializeNoArguments() != 0) throw InternalError("PETSc could not be initialized");
+      std::atexit([] { PetscFinalize(); });
+    }
+    PetscPushErrorHandler(keep_message, nullptr);
+    return true;
+  }();
+  (void)started;
+}
+
+}  // namespace
+
+int process_count() {
+  ensure_petsc();
+  PetscMPIInt size = 1;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  return size;
+}
+
+std::string default_solver_options() {
+  return "-ksp_type fgmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 200 "
+         "-pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full "
+         "-pc_fieldsplit_schur_precondition selfp "
+         "-fieldsplit_u_ksp_type preonly -fieldsplit_u_pc_type bjacobi -fieldsplit_u_sub_pc_type ilu "
+         "-fieldsplit_p_ksp_type preonly -fieldsplit_p_pc_type hypre -fieldsplit_p_pc_hypre_type boomeramg "
+         "-fieldsplit_p_pc_hypre_boomeramg_coarsen_type HMIS -fieldsplit_p_pc_hypre_boomeramg_interp_type ext+i "
+         "-fieldsplit_p_pc_hypre_boomeramg_strong_threshold 0.6";
+}
+
+struct LinearSolver::Impl {
+  SparsePattern pattern;
+  int block_size = 1;
+  Mat matrix = nullptr;
+  Vec rhs = nullptr, solution = nullptr;
+  KSP ksp = nullptr;
+  IS velocity = nullptr, pressure = nullptr;
+
+  ~Impl() {
+    if (velocity) ISDestroy(&velocity);
+    if (pressure) ISDestroy(&pressure);
+    if (ksp) KSPDestroy(&ksp);
+    if (rhs) VecDestroy(&rhs);
+    if (solution) VecDestroy(&solution);
+    if (matrix) MatDestroy(&matrix);
+  }
+};
+
+LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::string& options)
+    : impl_(std::make_unique<Impl>()) {
+  ensure_petsc();
+  Impl& s = *impl_;
+  s.pattern = std::move(pattern);
+  s.block_size = block_size;
+  const PetscInt n = s.pattern.rows;
+  VM_CHECK(static_cast<int>(s.pattern.row_start.size()) == n + 1, "pattern row offsets");
+  VM_CHECK(block_size >= 1 && n % block_size == 0, "rows are not whole blocks");
+
+  // The options database holds this solver's options only: defaults, then the caller's.
+  check(PetscOptionsClear(nullptr), "clearing options");
+  check(PetscOptionsInsertString(nullptr, default_solver_options().c_str()), "default options");
+  if (PetscOptionsInsertString(nullptr, options.c_str()) != 0) {
+    petsc_message.clear();
+    throw OptionError(fmt::format("PETSc cannot read the solver options \"{}\"", options));
+  }
+
+  check(MatCreate(PETSC_COMM_SELF, &s.matrix), "MatCreate");
+  check(MatSetSizes(s.matrix, n, n, n, n), "MatSetSizes");
+  check(MatSetType(s.matrix, MATSEQAIJ), "MatSetType");
+  check(MatSetBlockSize(s.matrix, block_size), "MatSetBlockSize");
+  std::vector<PetscInt> starts(s.pattern.row_start.begin(), s.pattern.row_start.end());
+  std::vector<PetscInt> columns(s.pattern.columns.begin(), s.pattern.columns.end());
+  check(MatSeqAIJSetPreallocationCSR(s.matrix, starts.data(), columns.data(), nullptr), "preallocation");
+  check(MatSetOption(s.matrix, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
+  check(MatCreateVecs(s.matrix, &s.solution, &s.rhs), "MatCreateVecs");
+
+  check(KSPCreate(PETSC_COMM_SELF, &s.ksp), "KSPCreate");
+  check(KSPSetOperators(s.ksp, s.matrix, s.matrix), "KSPSetOperators");
+  check(KSPSetInitialGuessNonzero(s.ksp, PETSC_TRUE), "KSPSetInitialGuessNonzero");
+  if (KSPSetFromOptions(s.ksp) != 0) {
+    const std::string why = petsc_message;
+    petsc_message.clear();
+    throw OptionError(fmt::format("PETSc refused the solver options: {}", why));
+  }
+  PC pc = nullptr;
+  check(KSPGetPC(s.ksp, &pc), "KSPGetPC");
+  PetscBool split = PETSC_FALSE;
+  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCFIELDSPLIT, &split), "PC type");
+  if (split && block_size > 1) {
+    std::vector<PetscInt> u, p;
+    for (PetscInt i = 0; i < n; ++i) (i % block_size == block_size - 1 ? p : u).push_back(i);
+    check(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(u.size()), u.data(), PETSC_COPY_VALUES, &s.velocity), "IS");
+    check(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(p.size()), p.data(), PETSC_COPY_VALUES, &s.pressure), "IS");
+    check(PCFieldSplitSetIS(pc, "u", s.velocity), "PCFieldSplitSetIS");
+    check(PCFieldSplitSetIS(pc, "p", s.pressure), "PCFieldSplitSetIS");
+  }
+}
+
+LinearSolver::~LinearSolver() = default;
+
+const SparsePattern& LinearSolver::pattern() const { return impl_->pattern; }
+
+SolveStats LinearSolver::solve(const std::vector<double>& values, const std::vector<double>& rhs,
+                               std::vector<double>& x) {
+  Impl& s = *impl_;
+  const int n = s.pattern.rows;
+  VM_CHECK(static_cast<int>(values.size()) == s.pattern.nonzeros(), "matrix values do not match the pattern");
+  VM_CHECK(static_cast<int>(rhs.size()) == n && static_cast<int>(x.size()) == n, "vector sizes");
+  PetscScalar* a = nullptr;
+  check(MatSeqAIJGetArray(s.matrix, &a), "MatSeqAIJGetArray");
+  std::memcpy(a, values.data(), values.size() * sizeof(double));
+  check(MatSeqAIJRestoreArray(s.matrix, &a), "MatSeqAIJRestoreArray");
+
+  PetscScalar* v = nullptr;
+  check(VecGetArray(s.rhs, &v), "VecGetArray");
+  std::memcpy(v, rhs.data(), rhs.size() * sizeof(double));
+  check(VecRestoreArray(s.rhs, &v), "VecRestoreArray");
+  check(VecGetArray(s.solution, &v), "VecGetArray");
+  std::memcpy(v, x.data(), x.size() * sizeof(double));
+  check(VecRestoreArray(s.solution, &v), "VecRestoreArray");
+
+  check(KSPSolve(s.ksp, s.rhs, s.solution), "KSPSolve");
+
+  const PetscScalar* r = nullptr;
+  check(VecGetArrayRead(s.solution, &r), "VecGetArrayRead");
+  std::memcpy(x.data(), r, x.size() * sizeof(double));
+  check(VecRestoreArrayRead(s.solution, &r), "VecRestoreArrayRead");
+
+  SolveStats stats;
+  PetscInt iterations = 0;
+  PetscReal norm = 0.0;
+  KSPConvergedReason reason;
+  check(KSPGetIterationNumber(s.ksp, &iterations), "KSPGetIterationNumber");
+  check(KSPGetResidualNorm(s.ksp, &norm), "KSPGetResidualNorm");
+  check(KSPGetConvergedReason(s.ksp, &reason), "KSPGetConvergedReason");
+  stats.iterations = static_cast<int>(iterations);
+  stats.residual_norm = norm;
+  stats.converged = reason > 0;
+  stats.reason = KSPConvergedReasons[reason];
+  return stats;
+}
+
+std::string LinearSolver::description() const {
+  KSPType ksp_type = nullptr;
+  PCType pc_type = nullptr;
+  PC pc = nullptr;
+  KSPGetType(impl_->ksp, &ksp_type);
+  KSPGetPC(impl_->ksp, &pc);
+  PCGetType(pc, &pc_type);
+  return fmt::format("{} + {}", ksp_type ? ksp_type : "?", pc_type ? pc_type : "?");
+}
+
+}  // namespace vesselmesh::flow

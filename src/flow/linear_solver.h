@@ -1,0 +1,63 @@
+// Sparse linear systems of the flow solver, solved by PETSc behind this small header (PETSc's
+// headers stay in linear_solver.cpp).
+//
+// The unknowns are interleaved per node: `block_size` values a node, the last one the
+// pressure (u, v, w, p for the flow). With PETSc's `fieldsplit` preconditioner the two fields
+// are named `u` (the first block_size - 1 components) and `p`, so options address them as
+// `-fieldsplit_u_...` and `-fieldsplit_p_...`.
+// Options are PETSc's command-line options as one string; each solver starts from
+// `default_solver_options()` and then applies the caller's string, whose values win.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace vesselmesh::flow {
+
+// Compressed rows with sorted column indices; `values` of a matrix follow this order.
+struct SparsePattern {
+  int rows = 0;
+  std::vector<int> row_start;  // rows + 1 offsets
+  std::vector<int> columns;
+  int nonzeros() const { return static_cast<int>(columns.size()); }
+};
+
+struct SolveStats {
+  int iterations = 0;
+  double residual_norm = 0.0;  // the preconditioned residual PETSc's test looks at
+  bool converged = false;
+  std::string reason;  // PETSc's converged reason, e.g. CONVERGED_RTOL or DIVERGED_ITS
+};
+
+// FGMRES with a Schur-complement field split: the velocity block by block-Jacobi ILU, the
+// Schur complement (preconditioned by selfp) by hypre BoomerAMG (HMIS coarsening, ext+i
+// interpolation, strong threshold 0.6); relative tolerance 1e-6.
+std::string default_solver_options();
+
+// The number of MPI processes this program runs on (starts PETSc and MPI when needed).
+int process_count();
+
+class LinearSolver {
+ public:
+  // Throws OptionError when PETSc refuses an option (naming it), InternalError otherwise.
+  LinearSolver(SparsePattern pattern, int block_size, const std::string& options);
+  ~LinearSolver();
+  LinearSolver(const LinearSolver&) = delete;
+  LinearSolver& operator=(const LinearSolver&) = delete;
+
+  const SparsePattern& pattern() const;
+
+  // Solves A x = b for the matrix with `values` (in the pattern's order); `x` holds the
+  // initial guess on entry (size rows) and the solution on return.
+  SolveStats solve(const std::vector<double>& values, const std::vector<double>& rhs, std::vector<double>& x);
+
+  // The Krylov method and preconditioner PETSc settled on, e.g. "fgmres + fieldsplit".
+  std::string description() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vesselmesh::flow

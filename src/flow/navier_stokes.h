@@ -1,0 +1,80 @@
+// Incompressible Navier-Stokes on a tetrahedral mesh: P1-P1 finite elements with residual-based
+// stabilization (SUPG/PSPG and LSIC), BDF2 in time (BDF1 on the first step), a semi-implicit
+// Oseen linearization (the advecting velocity extrapolated from the last two steps, optional
+// Picard iterations) and one PETSc solve per step; a steady solve by Picard iterations from
+// Stokes.
+//
+// Input: a TetMesh with tagged boundary triangles (mesh units; scaled to SI by the case's
+// length unit) and a FlowCase whose conditions name every tag. Works in SI: velocity in m/s,
+// pressure in Pa (the unknown is p / density).
+// Stabilization (Tezduyar & Osawa 2000; Bazilevs et al. 2007): per element the metric
+// G = sum_a grad(phi_a) grad(phi_a)^T, tau_M = (4/dt^2 + u.G.u + C_I nu^2 G:G)^(-1/2) with
+// C_I = 36, tau_C = 1 / (tau_M tr G); thin boundary-layer tetrahedra get a small tau across the
+// layer from G itself. Convection uses the element's mean advecting velocity.
+// Boundaries: `wall` no-slip; `velocity` a profile normal to the end (parabolic in the
+// distance from the end's centroid, plug, or Womersley's from the waveform's Fourier series, with
+// the radius of a disc of the end's area) scaled so that its discrete flux is the flow;
+// `traction` the do-nothing condition nu du/dn - p n / rho = 0 with backflow stabilization
+// (beta/2 |min(u.n, 0)| u, Moghadam et al. 2011); `resistance` a traction -R Q n with the
+// outflow Q of the last step. Dirichlet rows carry the diagonal the element matrices gave them.
+// Without a traction or resistance boundary the pressure is fixed to 0 at one point.
+#pragma once
+
+#include "flow/case.h"
+#include "flow/linear_solver.h"
+#include "mesh/reporter.h"
+#include "mesh/tetmesh.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace vesselmesh::flow {
+
+struct BoundaryFlow {
+  std::string tag;
+  double flux = 0.0;           // m3/s through the boundary, positive out of the domain
+  double mean_pressure = 0.0;  // Pa, area-weighted
+  double area = 0.0;           // m2
+};
+
+struct StepReport {
+  int step = 0;  // steps taken so far (0 before the first)
+  double time = 0.0;
+  int linear_iterations = 0;  // all solves of the step
+  int solves = 0;
+  double max_cfl = 0.0;  // max |u| dt / h over the elements (h: the element's least height)
+  double change = 0.0;   // relative velocity change of the last (Picard) iteration
+  double seconds = 0.0, assembly_seconds = 0.0, solve_seconds = 0.0;
+  std::string solver_reason;
+};
+
+class NavierStokes {
+ public:
+  // Checks the case's tags against the mesh's (check_tags) and builds everything a step needs.
+  NavierStokes(const TetMesh& mesh, const FlowCase& flow_case, const Reporter& reporter = silent_reporter());
+  ~NavierStokes();
+
+  // One time step (unsteady cases). A diverging step is a ComputationError naming
+  // the step and the likely cause (CFL, backflow).
+  StepReport step();
+  // Picard iterations from Stokes until the relative change is below the case's tolerance.
+  StepReport solve_steady();
+
+  // Starts the time stepping from this velocity (m/s per point) at this time (s).
+  void set_state(const std::vector<Vec3>& velocity, double time);
+
+  double time() const;
+  int steps() const;
+  int dofs() const;
+  const std::vector<Vec3>& velocity() const;  // m/s per mesh point
+  std::vector<double> pressure() const;       // Pa per mesh point
+  std::vector<BoundaryFlow> boundary_flows() const;
+  std::string solver_description() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vesselmesh::flow

@@ -1,0 +1,178 @@
+#include "flow/simulate.h"
+
+#include "flow/linear_solver.h"
+#include "flow/navier_stokes.h"
+#include "io/atomic_file.h"
+#include "io/msh.h"
+#include "io/vtk_formats.h"
+#include "mesh/error.h"
+#include "post/wss.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+
+namespace vesselmesh::flow {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+TetMesh read_mesh(const FlowCase& c) {
+  const std::string ext = std::filesystem::path(c.mesh).extension().string();
+  if (!std::filesystem::exists(c.mesh))
+    throw InputError(fmt::format("{}: mesh \"{}\" does not exist (paths are relative to the case file)", c.path, c.mesh));
+  if (ext == ".msh") return io::read_msh_volume(c.mesh);
+  throw InputError(fmt::format("{}: mesh \"{}\": only Gmsh MSH volume meshes are read (write one with "
+                               "`vesselmesh volume SURFACE -o volume.msh`)",
+                               c.path, c.mesh));
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  io::write_atomically(path, [&](const std::string& temporary) {
+    std::ofstream out(temporary, std::ios::binary);
+    out << text;
+    if (!out) throw InputError(fmt::format("cannot write {}", path));
+  });
+}
+
+std::string pvd(const std::vector<std::pair<double, std::string>>& files, const std::string& units) {
+  std::string text = "<?xml version=\"1.0\"?>\n<!-- vesselmesh simulate: " + units + " -->\n"
+                     "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n";
+  for (const auto& [time, file] : files)
+    text += fmt::format("    <DataSet timestep=\"{:.9g}\" group=\"\" part=\"0\" file=\"{}\"/>\n", time, file);
+  return text + "  </Collection>\n</VTKFile>\n";
+}
+
+}  // namespace
+
+SimulationSummary simulate(const FlowCase& input_case, const std::string& output_dir,
+                           const std::string& extra_petsc_options, const Reporter& reporter) {
+  const auto start = Clock::now();
+  if (process_count() > 1)
+    throw OptionError("simulate runs on one process for now (the distributed solve is not there yet): run it without "
+                      "mpirun");
+  FlowCase fc = input_case;
+  if (!extra_petsc_options.empty()) fc.petsc_options += " " + extra_petsc_options;
+  const TetMesh mesh = read_mesh(fc);
+  reporter.info(fmt::format("mesh {}: {} points, {} tetrahedra, {} prisms, {} boundary triangles", fc.mesh,
+                            mesh.num_points(), mesh.num_tets(), mesh.num_prisms(), mesh.boundary.size()));
+  reporter.info(fmt::format("units: mesh in {}, scaled by {:g} to metres; velocity m/s, pressure Pa, wss Pa",
+                            fc.length_unit, fc.length_scale));
+  NavierStokes ns(mesh, fc, reporter);
+
+  std::vector<int> wall_tags;
+  for (const auto& [tag, name] : mesh.tag_names)
+    for (const BoundaryCondition& b : fc.boundaries)
+      if (b.tag == name && b.type == BoundaryType::wall) wall_tags.push_back(tag);
+  const std::vector<Tet> all = mesh::all_tetrahedra(mesh);
+  const post::WallSurface wall = post::extract_wall(mesh, all, wall_tags);
+  std::vector<Vec3> si(mesh.points.size());
+  for (size_t i = 0; i < si.size(); ++i) si[i] = mesh.points[i] * fc.length_scale;
+
+  std::filesystem::create_directories(output_dir);
+  const std::string units = fmt::format("points in {} (x {:g} m), velocity m/s, pressure Pa, wss Pa, time s",
+                                        fc.length_unit, fc.length_scale);
+  SimulationSummary summary;
+  summary.points = mesh.num_points();
+  summary.tetrahedra = static_cast<int>(all.size());
+  summary.dofs = ns.dofs();
+  summary.length_scale = fc.length_scale;
+  summary.setup_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  std::vector<std::pair<double, std::string>> fluid_files, wall_files;
+
+  std::string log = "step,time_s";
+  for (const BoundaryCondition& b : fc.boundaries)
+    log += fmt::format(",{0}_flux_m3_s,{0}_mean_pressure_Pa", b.tag);
+  log += ",linear_iterations,max_cfl,assembly_seconds,solve_seconds,seconds\n";
+
+  const auto write_summary = [&]() {
+    nlohmann::ordered_json j;
+    j["status"] = summary.status;
+    j["case"] = fc.path;
+    j["mesh"] = fc.mesh;
+    j["units"] = {{"points", fc.length_unit}, {"length_scale_m", fc.length_scale}, {"velocity", "m/s"},
+                  {"pressure", "Pa"}, {"wss", "Pa"}, {"time", "s"}, {"flux", "m3/s"}};
+    j["points"] = summary.points;
+    j["tetrahedra"] = summary.tetrahedra;
+    j["dofs"] = summary.dofs;
+    j["ranks"] = 1;
+    j["steady"] = fc.steady;
+    j["steps"] = summary.steps;
+    j["saved"] = summary.saved;
+    j["linear_iterations"] = summary.linear_iterations;
+    j["setup_seconds"] = summary.setup_seconds;
+    j["seconds"] = summary.seconds;
+    j["seconds_per_step"] = summary.seconds_per_step;
+    j["seconds_per_step_per_million_dofs"] =
+        summary.dofs > 0 ? summary.seconds_per_step / (summary.dofs * 1e-6) : 0.0;
+    j["solver"] = summary.solver;
+    j["petsc_options"] = fc.petsc_options;
+    write_text(output_dir + "/summary.json", j.dump(2) + "\n");
+  };
+
+  const auto save = [&](double time) {
+    const std::string name = fmt::format("{:06d}", summary.saved);
+    std::vector<double> pressure = ns.pressure();
+    io::write_vtu(output_dir + "/fluid_" + name + ".vtu", mesh,
+                  {Field::vector("velocity", ns.velocity()), Field::scalar("pressure", pressure)});
+    const std::vector<Vec3> tau = post::wall_shear_stress(wall, all, si, ns.velocity(), fc.viscosity);
+    std::vector<double> magnitude(tau.size());
+    for (size_t i = 0; i < tau.size(); ++i) magnitude[i] = tau[i].norm();
+    io::write_vtp(output_dir + "/wall_" + name + ".vtp", wall.mesh,
+                  {Field::vector("wss", tau), Field::scalar("wss_magnitude", magnitude)});
+    fluid_files.emplace_back(time, "fluid_" + name + ".vtu");
+    wall_files.emplace_back(time, "wall_" + name + ".vtp");
+    summary.saved += 1;
+    write_text(output_dir + "/fluid.pvd", pvd(fluid_files, units));
+    write_text(output_dir + "/wall.pvd", pvd(wall_files, units));
+    write_text(output_dir + "/log.csv", log);
+  };
+
+  const auto log_step = [&](const StepReport& r) {
+    log += fmt::format("{},{:.9g}", r.step, r.time);
+    for (const BoundaryFlow& f : ns.boundary_flows()) log += fmt::format(",{:.9g},{:.9g}", f.flux, f.mean_pressure);
+    log += fmt::format(",{},{:.4g},{:.4g},{:.4g},{:.4g}\n", r.linear_iterations, r.max_cfl, r.assembly_seconds,
+                       r.solve_seconds, r.seconds);
+  };
+
+  const auto solve_start = Clock::now();
+  try {
+    if (fc.steady) {
+      const StepReport r = ns.solve_steady();
+      summary.steps = r.step;
+      summary.linear_iterations = r.linear_iterations;
+      log_step(r);
+      summary.solver = ns.solver_description();
+      save(0.0);
+    } else {
+      const int steps = static_cast<int>(std::ceil(fc.end / fc.dt - 1e-9));
+      reporter.info(fmt::format("{} steps of {:g} s to t = {:g} s, {} dofs", steps, fc.dt, fc.end, ns.dofs()));
+      for (int k = 0; k < steps; ++k) {
+        const StepReport r = ns.step();
+        summary.steps = r.step;
+        summary.linear_iterations += r.linear_iterations;
+        log_step(r);
+        if (k == 0) summary.solver = ns.solver_description();
+        if (r.step % fc.save_every == 0 || k + 1 == steps) save(r.time);
+        reporter.progress("time steps", double(k + 1) / steps);
+      }
+    }
+  } catch (const ComputationError&) {
+    summary.status = "diverged";
+    summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    write_text(output_dir + "/log.csv", log);
+    write_summary();
+    throw;
+  }
+  summary.status = "completed";
+  summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  const double solving = std::chrono::duration<double>(Clock::now() - solve_start).count();
+  summary.seconds_per_step = summary.steps > 0 ? solving / summary.steps : 0.0;
+  write_summary();
+  return summary;
+}
+
+}  // namespace vesselmesh::flow

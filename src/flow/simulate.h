@@ -1,0 +1,37 @@
+// A flow case run end to end: read the case and its mesh, solve (steady, or step by step in
+// time), and write ParaView-ready results.
+//
+// Output folder:
+//   fluid.pvd + fluid_NNNNNN.vtu   the volume per saved step: point data velocity (m/s), pressure (Pa)
+//   wall.pvd  + wall_NNNNNN.vtp    the wall per saved step: point data wss (Pa, vector),
+//                                  wss_magnitude (Pa); cell data tag
+//   log.csv                        per step: time, flux (m3/s, out of the domain) and mean
+//                                  pressure (Pa) per boundary, linear iterations, CFL, seconds
+//   summary.json                   sizes, steps, times, the SI scale applied, units, status
+// Points stay in the mesh's unit (named in summary.json and in the PVD files); the fields are
+// SI. Every file is written whole (atomically); the PVD collections, log and summary are
+// rewritten at each save, so a run that stops early leaves a consistent folder behind.
+#pragma once
+
+#include "flow/case.h"
+#include "mesh/reporter.h"
+
+#include <string>
+
+namespace vesselmesh::flow {
+
+struct SimulationSummary {
+  std::string status;  // "completed" or "diverged"
+  int points = 0, tetrahedra = 0, dofs = 0;
+  int steps = 0, saved = 0, linear_iterations = 0;
+  double seconds = 0.0, seconds_per_step = 0.0, setup_seconds = 0.0;
+  double length_scale = 1e-3;
+  std::string solver;
+};
+
+// `extra_petsc_options` are applied after the case's. Throws InputError for a bad case or mesh
+// (before any solve), ComputationError when the solve diverges (after writing what it has).
+SimulationSummary simulate(const FlowCase& flow_case, const std::string& output_dir,
+                           const std::string& extra_petsc_options = "", const Reporter& reporter = silent_reporter());
+
+}  // namespace vesselmesh::flow

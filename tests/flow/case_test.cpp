@@ -1,0 +1,147 @@
+#include "flow/case.h"
+
+#include "mesh/error.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+
+namespace vesselmesh::flow {
+namespace {
+
+// The issue's contract example, as users write it.
+const char* kContract = R"(
+mesh = "volume.msh"          # from `vesselmesh volume`
+length_unit = "mm"
+[fluid]
+density = 1060.0
+viscosity = 0.0035
+[time]
+steady = false
+dt = 1e-3
+end = 1.0
+save_every = 10
+[[boundary]]
+tag = "inlet"
+type = "velocity"
+profile = "parabolic"
+flow = 5.0
+[[boundary]]
+tag = "outlet_1"
+type = "traction"
+[[boundary]]
+tag = "wall"
+type = "wall"
+[solver]
+petsc_options = "-ksp_rtol 1e-8"
+)";
+
+TEST(FlowCase, ReadsTheContractKeys) {
+  const FlowCase c = parse_case(kContract, "/cases/pipe/case.toml");
+  EXPECT_EQ(c.mesh, "/cases/pipe/volume.msh");
+  EXPECT_DOUBLE_EQ(c.length_scale, 1e-3);
+  EXPECT_DOUBLE_EQ(c.density, 1060.0);
+  EXPECT_DOUBLE_EQ(c.viscosity, 0.0035);
+  EXPECT_FALSE(c.steady);
+  EXPECT_DOUBLE_EQ(c.dt, 1e-3);
+  EXPECT_DOUBLE_EQ(c.end, 1.0);
+  EXPECT_EQ(c.save_every, 10);
+  ASSERT_EQ(c.boundaries.size(), 3u);
+  EXPECT_EQ(c.boundaries[0].type, BoundaryType::velocity);
+  EXPECT_EQ(c.boundaries[0].profile, Profile::parabolic);
+  EXPECT_DOUBLE_EQ(c.boundaries[0].flow(0.37), 5.0);
+  EXPECT_EQ(c.boundaries[1].type, BoundaryType::traction);
+  EXPECT_EQ(c.boundaries[2].type, BoundaryType::wall);
+  EXPECT_EQ(c.petsc_options, "-ksp_rtol 1e-8");
+  EXPECT_NO_THROW(check_tags(c, {"wall", "inlet", "outlet_1"}));
+}
+
+TEST(FlowCase, CyclesTimesPeriodAndOtherUnits) {
+  std::string text = kContract;
+  text.replace(text.find("end = 1.0"), 9, "cycles = 3\nperiod = 0.8");
+  text.replace(text.find("\"mm\""), 4, "\"cm\"");
+  const FlowCase c = parse_case(text, "case.toml");
+  EXPECT_DOUBLE_EQ(c.end, 2.4);
+  EXPECT_DOUBLE_EQ(c.length_scale, 1e-2);
+}
+
+// Each mistake is an InputError naming the file and the key.
+void expect_error(const std::string& text, const std::string& part) {
+  try {
+    parse_case(text, "bad.toml");
+    ADD_FAILURE() << "no error; expected one mentioning " << part;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("bad.toml"), std::string::npos) << e.what();
+  }
+}
+
+std::string with(std::string text, const std::string& from, const std::string& to) {
+  text.replace(text.find(from), from.size(), to);
+  return text;
+}
+
+TEST(FlowCase, MistakesAreNamed) {
+  expect_error(with(kContract, "length_unit = \"mm\"", "length_unit = \"furlong\""), "length_unit");
+  expect_error(with(kContract, "density = 1060.0", "density = -1.0"), "fluid.density");
+  expect_error(with(kContract, "density = 1060.0", "densty = 1060.0"), "fluid.densty");
+  expect_error(with(kContract, "type = \"traction\"", "type = \"outflow\""), "boundary[1].type");
+  expect_error(with(kContract, "flow = 5.0", "flow = \"five\""), "boundary[0].flow");
+  expect_error(with(kContract, "flow = 5.0", ""), "needs `flow`");
+  expect_error(with(kContract, "dt = 1e-3", ""), "time.dt");
+  expect_error(with(kContract, "tag = \"wall\"", "tag = \"inlet\""), "two conditions");
+  expect_error(with(kContract, "save_every = 10", "save_every = 0"), "time.save_every");
+  expect_error(with(kContract, "[fluid]", "[fluid"), "bad.toml:");
+  expect_error(with(kContract, "mesh = \"volume.msh\"", ""), "mesh");
+  expect_error(with(kContract, "profile = \"parabolic\"", "profile = \"poiseuille\""), "boundary[0].profile");
+  expect_error(with(kContract, "flow = 5.0", "flow = 5.0\nharmonics = 4"), "only a womersley profile");
+}
+
+TEST(FlowCase, TagsMustMatchTheMesh) {
+  const FlowCase c = parse_case(kContract, "case.toml");
+  try {
+    check_tags(c, {"wall", "inlet"});
+    ADD_FAILURE() << "outlet_1 is not in the mesh";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("\"outlet_1\" is not in the mesh"), std::string::npos) << e.what();
+  }
+  try {
+    check_tags(c, {"wall", "inlet", "outlet_1", "outlet_2"});
+    ADD_FAILURE() << "outlet_2 has no condition";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("\"outlet_2\" has no condition"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Waveform, LinearBetweenSamplesAndPeriodic) {
+  const Waveform w({0.0, 0.2, 1.0}, {1.0, 3.0, 1.0});
+  EXPECT_DOUBLE_EQ(w.period(), 1.0);
+  EXPECT_DOUBLE_EQ(w(0.1), 2.0);
+  EXPECT_DOUBLE_EQ(w(0.6), 2.0);
+  EXPECT_DOUBLE_EQ(w(1.1), 2.0);
+  EXPECT_DOUBLE_EQ(w(-0.9), 2.0);
+  EXPECT_DOUBLE_EQ(w(3.2), 3.0);
+}
+
+TEST(Waveform, ReadsCsvAndNamesTheBadLine) {
+  const test::TemporaryFolder folder;
+  const std::string good = folder.path("good.csv"), bad = folder.path("bad.csv");
+  test::write_bytes(good, "time_s,flow_ml_s\n# a comment\n0.0, 2.0\n0.5, 4.0\r\n1.0, 2.0\n");
+  test::write_bytes(bad, "0.0, 2.0\n0.5, four\n");
+  const Waveform w = Waveform::read_csv(good);
+  EXPECT_EQ(w.samples(), 3);
+  EXPECT_DOUBLE_EQ(w(0.25), 3.0);
+  try {
+    Waveform::read_csv(bad);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.csv:2"), std::string::npos) << e.what();
+  }
+  std::string text = kContract;
+  text.replace(text.find("flow = 5.0"), 10, "waveform = \"good.csv\"");
+  const FlowCase c = parse_case(text, folder.path("case.toml"));
+  EXPECT_DOUBLE_EQ(c.boundaries[0].flow(1.25), 3.0);
+}
+
+}  // namespace
+}  // namespace vesselmesh::flow

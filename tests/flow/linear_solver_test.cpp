@@ -1,0 +1,60 @@
+#include "flow/linear_solver.h"
+
+#include "mesh/error.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace vesselmesh::flow {
+namespace {
+
+// The 1D Laplacian (2, -1) on n points: pattern and values.
+SparsePattern laplacian_pattern(int n, std::vector<double>& values) {
+  SparsePattern p;
+  p.rows = n;
+  p.row_start.push_back(0);
+  for (int i = 0; i < n; ++i) {
+    for (int j = std::max(0, i - 1); j <= std::min(n - 1, i + 1); ++j) {
+      p.columns.push_back(j);
+      values.push_back(i == j ? 2.0 : -1.0);
+    }
+    p.row_start.push_back(p.nonzeros());
+  }
+  return p;
+}
+
+TEST(LinearSolver, SolvesWithTheCallersOptions) {
+  const int n = 200;
+  std::vector<double> values;
+  const SparsePattern pattern = laplacian_pattern(n, values);
+  // x_i = sin(pi (i + 1) / (n + 1)) * ... : build b = A x for a known x.
+  std::vector<double> exact(n), b(n, 0.0), x(n, 0.0);
+  for (int i = 0; i < n; ++i) exact[i] = std::sin(0.1 * i) + 0.01 * i;
+  for (int i = 0; i < n; ++i)
+    for (int k = pattern.row_start[i]; k < pattern.row_start[i + 1]; ++k) b[i] += values[k] * exact[pattern.columns[k]];
+  LinearSolver solver(pattern, 1, "-ksp_type cg -pc_type jacobi -ksp_rtol 1e-12");
+  const SolveStats stats = solver.solve(values, b, x);
+  EXPECT_TRUE(stats.converged) << stats.reason;
+  EXPECT_GT(stats.iterations, 0);
+  for (int i = 0; i < n; ++i) EXPECT_NEAR(x[i], exact[i], 1e-8);
+  EXPECT_EQ(solver.description(), "cg + jacobi");
+
+  // Too few iterations: not converged, and said so.
+  LinearSolver short_of_breath(pattern, 1, "-ksp_type cg -pc_type none -ksp_max_it 2");
+  std::vector<double> y(n, 0.0);
+  const SolveStats poor = short_of_breath.solve(values, b, y);
+  EXPECT_FALSE(poor.converged);
+  EXPECT_EQ(poor.reason, "DIVERGED_ITS");
+}
+
+TEST(LinearSolver, RefusedOptionsAreOptionErrors) {
+  std::vector<double> values;
+  const SparsePattern pattern = laplacian_pattern(10, values);
+  EXPECT_THROW(LinearSolver(pattern, 1, "-pc_type no_such_preconditioner"), OptionError);
+}
+
+TEST(LinearSolver, OneProcessHere) { EXPECT_EQ(process_count(), 1); }
+
+}  // namespace
+}  // namespace vesselmesh::flow
