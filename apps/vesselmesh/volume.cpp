@@ -195,7 +195,7 @@ Command add_volume_command(CLI::App& parent) {
 Command add_quality_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand(
       "quality",
-      "Figures of a volume mesh (.msh, as 'vesselmesh volume' or Gmsh writes it): points, tetrahedra, triangles per "
+      "Figures of a volume mesh (.msh or .vtu, as 'vesselmesh volume' or Gmsh writes it): points, tetrahedra, triangles per "
       "tag, inverted cells, dihedral angles, worst scaled Jacobian and aspect ratio, whether the tagged boundary closes "
       "the volume. Exit code 3 when a cell is inverted or the boundary is open");
   struct Options {
@@ -203,15 +203,12 @@ Command add_quality_command(CLI::App& parent) {
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
-  app->add_option("MESH", o->mesh, "Volume mesh (.msh)")->required();
+  app->add_option("MESH", o->mesh, "Volume mesh (.msh or .vtu)")->required();
   add_common_options(*app, o->common);
   return {app, [o] {
-            if (volume_format(o->mesh) != VolumeFormat::msh)
-              throw OptionError(fmt::format("{}: quality reads .msh volume meshes (write one with vesselmesh volume -o "
-                                            "X.msh); reading .vtu back is not there yet",
-                                            o->mesh));
             TerminalReporter reporter(o->common.quiet);
-            const TetMesh mesh = io::read_msh_volume(o->mesh);
+            const TetMesh mesh = volume_format(o->mesh) == VolumeFormat::msh ? io::read_msh_volume(o->mesh)
+                                                                               : io::read_vtu_volume(o->mesh);
             const volume::VolumeQuality q = volume::measure_volume(mesh);
             if (o->common.json) {
               Json json = quality_json(q);

@@ -57,7 +57,11 @@ int process_count() {
   return size;
 }
 
-std::string default_solver_options() {
+std::string time_step_options() {
+  return "-ksp_type gmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 100 -pc_type bjacobi -sub_pc_type ilu";
+}
+
+std::string saddle_point_options() {
   return "-ksp_type fgmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 200 "
          "-pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full "
          "-pc_fieldsplit_schur_precondition selfp "
@@ -85,7 +89,8 @@ struct LinearSolver::Impl {
   }
 };
 
-LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::string& options)
+LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::string& defaults,
+                           const std::string& options)
     : impl_(std::make_unique<Impl>()) {
   ensure_petsc();
   Impl& s = *impl_;
@@ -97,7 +102,7 @@ LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::str
 
   // The options database holds this solver's options only: defaults, then the caller's.
   check(PetscOptionsClear(nullptr), "clearing options");
-  check(PetscOptionsInsertString(nullptr, default_solver_options().c_str()), "default options");
+  check(PetscOptionsInsertString(nullptr, defaults.c_str()), "default options");
   if (PetscOptionsInsertString(nullptr, options.c_str()) != 0) {
     petsc_message.clear();
     throw OptionError(fmt::format("PETSc cannot read the solver options \"{}\"", options));

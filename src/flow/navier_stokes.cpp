@@ -420,7 +420,9 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
 }
 
 void NavierStokes::Impl::solve_system(StepReport& report, const std::string& where) {
-  if (!solver) solver = std::make_unique<LinearSolver>(pattern, kBlock, fc.petsc_options);
+  if (!solver)
+    solver = std::make_unique<LinearSolver>(pattern, kBlock, fc.steady ? saddle_point_options() : time_step_options(),
+                                            fc.petsc_options);
   x.assign(pattern.rows, 0.0);
   for (int a = 0; a < n(); ++a) {
     for (int i = 0; i < 3; ++i) x[kBlock * a + i] = u[a][i];

@@ -25,8 +25,9 @@ TetMesh read_mesh(const FlowCase& c) {
   if (!std::filesystem::exists(c.mesh))
     throw InputError(fmt::format("{}: mesh \"{}\" does not exist (paths are relative to the case file)", c.path, c.mesh));
   if (ext == ".msh") return io::read_msh_volume(c.mesh);
-  throw InputError(fmt::format("{}: mesh \"{}\": only Gmsh MSH volume meshes are read (write one with "
-                               "`vesselmesh volume SURFACE -o volume.msh`)",
+  if (ext == ".vtu") return io::read_vtu_volume(c.mesh);
+  throw InputError(fmt::format("{}: mesh \"{}\": a volume mesh is read from .msh (Gmsh) or .vtu (with cell data "
+                               "`tag`), as `vesselmesh volume` writes them",
                                c.path, c.mesh));
 }
 

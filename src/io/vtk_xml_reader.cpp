@@ -31,7 +31,8 @@ namespace vesselmesh::io {
 namespace {
 
 // VTK cell types this reader takes from a VTU.
-constexpr int kVtkTriangle = 5, kVtkTriangleStrip = 6, kVtkPolygon = 7, kVtkQuad = 9;
+constexpr int kVtkTriangle = 5, kVtkTriangleStrip = 6, kVtkPolygon = 7, kVtkQuad = 9, kVtkTetra = 10,
+              kVtkWedge = 13;
 
 class XmlSurfaceReader {
  public:
@@ -39,6 +40,9 @@ class XmlSurfaceReader {
       : bytes_(bytes), stream_(std::string(bytes)), format_(format), name_(name), input_size_(bytes.size()) {}
 
   SurfaceData read(const std::string& label_array, bool lines_only);
+  // A volume mesh: tetrahedra, wedges and boundary triangles, with cell data `tag` (and
+  // `layer`, `column` when present) and field data `tag_names`, as write_vtu writes them.
+  TetMesh read_volume();
 
  private:
   [[noreturn]] void fail(const std::string& what) const { throw InputError(fmt::format("{}: {}", name_, what)); }
@@ -66,7 +70,18 @@ class XmlSurfaceReader {
   void add_polygon(const long long* ids, long long n, long long points, int point_base, long long cell,
                    TriMesh& mesh, std::vector<long long>& cell_of_triangle, bool strip);
   std::vector<Field> read_fields(vtkXMLDataElement* data, long long tuples, const char* where);
+  void read_points(vtkXMLDataElement* piece, long long points, std::vector<Vec3>& out);
+  std::vector<std::string> read_strings(vtkXMLDataElement* array);
   std::string stored_bytes(vtkXMLDataElement* array, bool appended, long long offset, size_t count) const;
+  // Token i of a binary header (UInt32 or UInt64, the file's byte order).
+  uint64_t header_token(const std::string& bytes, size_t i) const {
+    unsigned char raw[8] = {};
+    std::memcpy(raw, bytes.data() + i * header_size_, header_size_);
+    if (big_endian_) std::reverse(raw, raw + header_size_);
+    uint64_t v = 0;
+    for (int k = header_size_ - 1; k >= 0; --k) v = (v << 8) | raw[k];
+    return v;
+  }
   void check_compression_header(vtkXMLDataElement* array, const std::string& label, bool appended, long long offset,
                                 size_t expected_bytes) const;
 
@@ -81,6 +96,8 @@ class XmlSurfaceReader {
   int header_size_ = 4;        // bytes of a header token: UInt32 or UInt64
   bool big_endian_ = false;
   bool appended_base64_ = false;
+  TetMesh* volume_ = nullptr;  // set while reading a volume: its cells go there
+  std::vector<long long> cell_of_tet_, cell_of_prism_;
 };
 
 // Decodes base64 from `text` at `pos` (whitespace skipped) until `count` bytes are out or the
@@ -241,14 +258,7 @@ std::string XmlSurfaceReader::stored_bytes(vtkXMLDataElement* array, bool append
 void XmlSurfaceReader::check_compression_header(vtkXMLDataElement* array, const std::string& label, bool appended,
                                                 long long offset, size_t expected_bytes) const {
   if (!compressed_) return;
-  auto token = [&](const std::string& bytes, size_t i) {
-    unsigned char raw[8] = {};
-    std::memcpy(raw, bytes.data() + i * header_size_, header_size_);
-    if (big_endian_) std::reverse(raw, raw + header_size_);
-    uint64_t v = 0;
-    for (int k = header_size_ - 1; k >= 0; --k) v = (v << 8) | raw[k];
-    return v;
-  };
+  auto token = [&](const std::string& bytes, size_t i) { return header_token(bytes, i); };
   const std::string head = stored_bytes(array, appended, offset, 3 * static_cast<size_t>(header_size_));
   if (head.size() < 3 * static_cast<size_t>(header_size_)) fail(fmt::format("{}: its compressed data is cut short", label));
   const uint64_t blocks = token(head, 0), block_size = token(head, 1), last_size = token(head, 2);
@@ -364,12 +374,32 @@ void XmlSurfaceReader::read_grid_cells(vtkXMLDataElement* piece, long long cells
         fail(fmt::format("cell {} of type {} has {} points", c, t, n));
       add_polygon(ids.data() + start, n, points, point_base, cell_base + c, mesh, cell_of_triangle,
                   t == kVtkTriangleStrip);
+    } else if (volume_ && (t == kVtkTetra || t == kVtkWedge)) {
+      const long long expected = t == kVtkTetra ? 4 : 6;
+      if (n != expected) fail(fmt::format("cell {} of type {} has {} points, not {}", c, t, n, expected));
+      int v[6];
+      for (long long i = 0; i < n; ++i) {
+        if (ids[start + i] >= points)
+          fail(fmt::format("cell {} uses point {}, but the piece has {} points", c, ids[start + i], points));
+        v[i] = static_cast<int>(ids[start + i]) + point_base;
+      }
+      if (t == kVtkTetra) {
+        volume_->tets.push_back({v[0], v[1], v[2], v[3]});
+        cell_of_tet_.push_back(cell_base + c);
+      } else {
+        volume_->prisms.push_back({v[0], v[1], v[2], v[3], v[4], v[5]});
+        cell_of_prism_.push_back(cell_base + c);
+      }
+    } else if (volume_ && t >= 10) {
+      fail(fmt::format("cell {} has VTK type {}: volume meshes of tetrahedra (10) and wedges (13) are read", c, t));
+    } else if (volume_ && t != 1 && t != 2 && t != 3 && t != 4) {
+      fail(fmt::format("cell {} has VTK type {}, not a tetrahedron, wedge or boundary triangle", c, t));
     } else if (t >= 10) {
       ++volume_cells;
     }
     start = offsets[c];
   }
-  if (mesh.triangles.empty() && volume_cells > 0)
+  if (!volume_ && mesh.triangles.empty() && volume_cells > 0)
     fail(fmt::format("holds {} volume cells and no surface triangles: vesselmesh reads lumen surfaces here", volume_cells));
 }
 
@@ -391,6 +421,146 @@ std::vector<Field> XmlSurfaceReader::read_fields(vtkXMLDataElement* data, long l
   return fields;
 }
 
+void XmlSurfaceReader::read_points(vtkXMLDataElement* piece, long long points, std::vector<Vec3>& out) {
+  if (points == 0) return;
+  vtkXMLDataElement* element = piece->FindNestedElementWithName("Points");
+  vtkXMLDataElement* array = element ? element->FindNestedElementWithName("DataArray") : nullptr;
+  if (!array) fail("the piece has points but no <Points> array");
+  const std::vector<double> xyz = read_array(array, points, 3);
+  for (long long i = 0; i < points; ++i) {
+    const Vec3 p(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    if (!p.allFinite()) fail(fmt::format("point {} has a non-finite coordinate ({}, {}, {})", i, p.x(), p.y(), p.z()));
+    out.push_back(p);
+  }
+}
+
+// A String DataArray: the strings one after another, each ended by a zero byte (binary or
+// appended, compressed or not), or their character codes (ascii).
+std::vector<std::string> XmlSurfaceReader::read_strings(vtkXMLDataElement* array) {
+  const std::string label = fmt::format("string array '{}'", attribute(array, "Name").substr(0, 40));
+  const std::string format = attribute(array, "format");
+  const bool appended = format == "appended";
+  const long long offset = appended ? count_attribute(array, "offset", true) : 0;
+  std::string text;
+  if (format == "ascii") {
+    std::istringstream in(array->GetCharacterData() ? array->GetCharacterData() : "");
+    for (int code = 0; in >> code;) {
+      if (code < 0 || code > 255) fail(fmt::format("{}: character code {} out of range", label, code));
+      text.push_back(static_cast<char>(code));
+    }
+  } else if (appended || format == "binary") {
+    // The byte count: a compressed array's block table, else the one header token.
+    const std::string head = stored_bytes(array, appended, offset, 3 * static_cast<size_t>(header_size_));
+    if (head.size() < static_cast<size_t>(header_size_)) fail(fmt::format("{}: its data is cut short", label));
+    auto token = [&](size_t i) { return header_token(head, i); };
+    uint64_t total = token(0);
+    if (compressed_) {
+      if (head.size() < 3 * static_cast<size_t>(header_size_)) fail(fmt::format("{}: its data is cut short", label));
+      const uint64_t blocks = token(0), block_size = token(1), last = token(2);
+      total = blocks == 0 ? 0 : (last == 0 ? blocks * block_size : (blocks - 1) * block_size + last);
+    }
+    if (total > 1100.0 * static_cast<double>(input_size_) + 1e6)
+      fail(fmt::format("{} declares {} bytes, more than the file can hold", label, total));
+    check_compression_header(array, label, appended, offset, total);
+    std::vector<unsigned char> raw(total + 1);
+    const size_t read = total == 0 ? 0
+                        : appended ? parser_->ReadAppendedData(offset, raw.data(), 0, total, VTK_TYPE_UINT8)
+                                   : parser_->ReadInlineData(array, false, raw.data(), 0, total, VTK_TYPE_UINT8);
+    if (read != total) fail(fmt::format("{}: {} bytes expected, {} could be read", label, total, read));
+    text.assign(raw.begin(), raw.begin() + static_cast<long>(total));
+  } else {
+    fail(fmt::format("{} has format '{}'", label, format.substr(0, 20)));
+  }
+  std::vector<std::string> strings;
+  std::string current;
+  for (char c : text) {
+    if (c == '\0') {
+      strings.push_back(current);
+      current.clear();
+    } else {
+      current.push_back(c);
+    }
+  }
+  if (!current.empty()) strings.push_back(current);
+  return strings;
+}
+
+TetMesh XmlSurfaceReader::read_volume() {
+  parse_root();
+  TetMesh mesh;
+  volume_ = &mesh;
+  vtkXMLDataElement* piece = nullptr;
+  for (int i = 0; i < dataset_->GetNumberOfNestedElements(); ++i) {
+    vtkXMLDataElement* e = dataset_->GetNestedElement(i);
+    if (std::strcmp(e->GetName(), "Piece") != 0) continue;
+    if (piece) fail("has more than one <Piece>: a volume mesh is read from one piece");
+    piece = e;
+  }
+  if (!piece) fail("no <Piece> element");
+  const long long points = count_attribute(piece, "NumberOfPoints", true);
+  if (points > std::numeric_limits<int>::max() / 2) fail(fmt::format("{} points is more than vesselmesh handles", points));
+  const long long cells = count_attribute(piece, "NumberOfCells", true);
+  read_points(piece, points, mesh.points);
+  TriMesh triangles;
+  std::vector<long long> cell_of_triangle;
+  read_grid_cells(piece, cells, 0, 0, triangles, cell_of_triangle);
+  if (mesh.tets.empty() && mesh.prisms.empty()) fail("holds no tetrahedra or wedges: not a volume mesh");
+  mesh.boundary = std::move(triangles.triangles);
+
+  const std::vector<Field> fields = read_fields(piece->FindNestedElementWithName("CellData"), cells, "cell data");
+  const auto find = [&](const char* name) -> const Field* {
+    for (const Field& f : fields)
+      if (f.name == name && f.components == 1) return &f;
+    return nullptr;
+  };
+  const Field* tag = find("tag");
+  if (!tag)
+    fail("has no cell data 'tag' (the boundary triangles' tags): write the volume with vesselmesh volume, or as .msh "
+         "with physical groups");
+  const auto integer = [&](const Field& f, long long c) {
+    const double v = f.values[static_cast<size_t>(c)];
+    if (v != std::floor(v) || std::abs(v) > 1e9) fail(fmt::format("cell data '{}' of cell {} is {}, not an integer", f.name, c, v));
+    return static_cast<int>(v);
+  };
+  for (long long c : cell_of_triangle) mesh.boundary_tags.push_back(integer(*tag, c));
+  if (!cell_of_tet_.empty()) mesh.volume_tag = integer(*tag, cell_of_tet_[0]);
+  else mesh.volume_tag = integer(*tag, cell_of_prism_[0]);
+  const Field* layer = find("layer");
+  const Field* column = find("column");
+  if (layer && column) {
+    for (long long c : cell_of_tet_) {
+      mesh.tet_layer.push_back(integer(*layer, c));
+      mesh.tet_column.push_back(integer(*column, c));
+    }
+    for (long long c : cell_of_prism_) {
+      mesh.prism_layer.push_back(integer(*layer, c));
+      mesh.prism_column.push_back(integer(*column, c));
+    }
+  }
+
+  // Names: "<tag> <name>" strings, the volume's first (its tag may also be a boundary's: they
+  // are cells of another dimension); a tag without one is named by its number.
+  if (vtkXMLDataElement* data = dataset_->FindNestedElementWithName("FieldData"))
+    for (int i = 0; i < data->GetNumberOfNestedElements(); ++i) {
+      vtkXMLDataElement* array = data->GetNestedElement(i);
+      if (attribute(array, "Name") != "tag_names") continue;
+      bool first = true;
+      for (const std::string& entry : read_strings(array)) {
+        std::istringstream in(entry);
+        int t = 0;
+        std::string name;
+        if (!(in >> t >> name)) fail(fmt::format("tag_names entry '{}' is not '<tag> <name>'", entry.substr(0, 60)));
+        if (first && t == mesh.volume_tag) mesh.volume_name = name;
+        else mesh.tag_names[t] = name;
+        first = false;
+      }
+    }
+  for (int t : mesh.boundary_tags)
+    if (!mesh.tag_names.count(t)) mesh.tag_names[t] = std::to_string(t);
+  volume_ = nullptr;
+  return mesh;
+}
+
 void XmlSurfaceReader::read_piece(vtkXMLDataElement* piece, SurfaceData& out, std::vector<Field>& cell_fields) {
   const long long points = count_attribute(piece, "NumberOfPoints", true);
   if (points > std::numeric_limits<int>::max() / 2) fail(fmt::format("{} points is more than vesselmesh handles", points));
@@ -399,17 +569,7 @@ void XmlSurfaceReader::read_piece(vtkXMLDataElement* piece, SurfaceData& out, st
                                     count_attribute(piece, "NumberOfPolys", false) + count_attribute(piece, "NumberOfStrips", false)
                               : count_attribute(piece, "NumberOfCells", true);
   const int point_base = out.mesh.num_points();
-  if (points > 0) {
-    vtkXMLDataElement* element = piece->FindNestedElementWithName("Points");
-    vtkXMLDataElement* array = element ? element->FindNestedElementWithName("DataArray") : nullptr;
-    if (!array) fail("the piece has points but no <Points> array");
-    const std::vector<double> xyz = read_array(array, points, 3);
-    for (long long i = 0; i < points; ++i) {
-      const Vec3 p(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-      if (!p.allFinite()) fail(fmt::format("point {} has a non-finite coordinate ({}, {}, {})", i, p.x(), p.y(), p.z()));
-      out.mesh.points.push_back(p);
-    }
-  }
+  read_points(piece, points, out.mesh.points);
   std::vector<long long> cell_of_triangle;
   const size_t first_triangle = out.mesh.triangles.size();
   if (format_ == VtkFormat::vtp) read_polydata_cells(piece, point_base, 0, out, cell_of_triangle);
@@ -458,6 +618,19 @@ SurfaceData parse_vtk_xml_surface(std::string_view bytes, VtkFormat format, cons
     return XmlSurfaceReader(bytes, format, name).read(label_array, false);
   } catch (const std::bad_alloc&) {
     throw InputError(fmt::format("{}: the file declares more data than fits in memory (a damaged file?)", name));
+  }
+}
+
+TetMesh read_vtu_volume(const std::string& path) {
+  keep_vtk_errors();
+  const std::string bytes = read_file(path);
+  if (bytes.empty()) throw InputError(fmt::format("{}: the file is empty", path));
+  if (bytes.find("<VTKFile") == std::string::npos)
+    throw InputError(fmt::format("{}: not a VTK XML file (no <VTKFile> element)", path));
+  try {
+    return XmlSurfaceReader(bytes, VtkFormat::vtu, path).read_volume();
+  } catch (const std::bad_alloc&) {
+    throw InputError(fmt::format("{}: the file declares more data than fits in memory (a damaged file?)", path));
   }
 }
 

@@ -33,7 +33,7 @@ TEST(LinearSolver, SolvesWithTheCallersOptions) {
   for (int i = 0; i < n; ++i) exact[i] = std::sin(0.1 * i) + 0.01 * i;
   for (int i = 0; i < n; ++i)
     for (int k = pattern.row_start[i]; k < pattern.row_start[i + 1]; ++k) b[i] += values[k] * exact[pattern.columns[k]];
-  LinearSolver solver(pattern, 1, "-ksp_type cg -pc_type jacobi -ksp_rtol 1e-12");
+  LinearSolver solver(pattern, 1, time_step_options(), "-ksp_type cg -pc_type jacobi -ksp_rtol 1e-12");
   const SolveStats stats = solver.solve(values, b, x);
   EXPECT_TRUE(stats.converged) << stats.reason;
   EXPECT_GT(stats.iterations, 0);
@@ -41,7 +41,7 @@ TEST(LinearSolver, SolvesWithTheCallersOptions) {
   EXPECT_EQ(solver.description(), "cg + jacobi");
 
   // Too few iterations: not converged, and said so.
-  LinearSolver short_of_breath(pattern, 1, "-ksp_type cg -pc_type none -ksp_max_it 2");
+  LinearSolver short_of_breath(pattern, 1, saddle_point_options(), "-ksp_type cg -pc_type none -ksp_max_it 2");
   std::vector<double> y(n, 0.0);
   const SolveStats poor = short_of_breath.solve(values, b, y);
   EXPECT_FALSE(poor.converged);
@@ -51,7 +51,7 @@ TEST(LinearSolver, SolvesWithTheCallersOptions) {
 TEST(LinearSolver, RefusedOptionsAreOptionErrors) {
   std::vector<double> values;
   const SparsePattern pattern = laplacian_pattern(10, values);
-  EXPECT_THROW(LinearSolver(pattern, 1, "-pc_type no_such_preconditioner"), OptionError);
+  EXPECT_THROW(LinearSolver(pattern, 1, time_step_options(), "-pc_type no_such_preconditioner"), OptionError);
 }
 
 TEST(LinearSolver, OneProcessHere) { EXPECT_EQ(process_count(), 1); }

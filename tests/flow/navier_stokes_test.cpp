@@ -127,6 +127,30 @@ TEST(NavierStokes, SteadyPoiseuilleInAPipeWithABoundaryLayer) {
   EXPECT_LT(worst_wss, 0.05);
 }
 
+// A resistance outlet: at convergence its mean pressure is R times its outflow, and the inlet's
+// pressure sits above it by Poiseuille's drop 8 mu L Q / (pi R^4) (within the coarse mesh's error).
+TEST(NavierStokes, ResistanceOutletCarriesRTimesQ) {
+  const double R = 2.0, L = 6.0, Q = 0.5, resistance = 2e8;  // mm, mm, mL/s, Pa s/m3
+  const TetMesh mesh = pipe_volume(R, L, 0.4);
+  FlowCase fc = pipe_case("steady = true", fmt::format("flow = {}", Q), "case.toml");
+  fc.boundaries[1].type = BoundaryType::resistance;
+  fc.boundaries[1].resistance = resistance;
+  NavierStokes ns(mesh, fc);
+  ns.solve_steady();
+  const double q = Q * 1e-6, r = R * 1e-3;
+  double inlet = 0.0, outlet = 0.0;
+  for (const BoundaryFlow& f : ns.boundary_flows()) {
+    if (f.tag == "inlet") inlet = f.mean_pressure;
+    if (f.tag == "outlet_1") {
+      outlet = f.mean_pressure;
+      EXPECT_NEAR(f.flux, q, 1e-3 * q);
+    }
+  }
+  EXPECT_NEAR(outlet, resistance * q, 0.01 * resistance * q);
+  const double drop = 8.0 * fc.viscosity * L * 1e-3 * q / (M_PI * r * r * r * r);
+  EXPECT_NEAR(inlet - outlet, drop, 0.1 * drop);
+}
+
 // A linear solve that does not converge stops the run with the step named.
 TEST(NavierStokes, AFailedSolveNamesTheStep) {
   const TetMesh mesh = pipe_volume(2.0, 4.0, 0.6);

@@ -155,5 +155,43 @@ TEST(VtuVolume, BoundaryTrianglesReadBackWithTheirTags) {
   EXPECT_EQ(tmp.files(), std::vector<std::string>{"v.vtu"});
 }
 
+// write_vtu then read_vtu_volume: the same cells, tags, names and layer data.
+TEST(VtuVolume, ReadsBackWhatWriteVtuWrote) {
+  test::TemporaryFolder tmp;
+  TetMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 2}, {1, 0, 2}, {0, 1, 2}};
+  m.tets = {{0, 1, 2, 3}};
+  // A wedge on the tetrahedron's top... not a closed mesh, just cells to read back.
+  m.prisms = {{3, 1, 2, 4, 5, 6}};
+  m.boundary = mesh::tet_boundary(m.tets);
+  m.boundary_tags = {3, 2, 2, 7};
+  m.tag_names = {{3, "inlet"}, {2, "wall"}};  // 7 has no name; the wall shares the volume's number
+  m.volume_tag = 2;
+  m.volume_name = "lumen";
+  m.tet_layer = {0};
+  m.tet_column = {-1};
+  m.prism_layer = {1};
+  m.prism_column = {2};
+  write_vtu(tmp.path("v.vtu"), m, {Field::scalar("radius", {1, 2, 3, 4, 5, 6, 7})});
+  const TetMesh back = read_vtu_volume(tmp.path("v.vtu"));
+  EXPECT_EQ(back.points, m.points);
+  EXPECT_EQ(back.tets, m.tets);
+  EXPECT_EQ(back.prisms, m.prisms);
+  EXPECT_EQ(back.boundary, m.boundary);
+  EXPECT_EQ(back.boundary_tags, m.boundary_tags);
+  EXPECT_EQ(back.tag_names, (std::map<int, std::string>{{2, "wall"}, {3, "inlet"}, {7, "7"}}));
+  EXPECT_EQ(back.volume_tag, 2);
+  EXPECT_EQ(back.volume_name, "lumen");
+  EXPECT_EQ(back.tet_layer, m.tet_layer);
+  EXPECT_EQ(back.prism_column, m.prism_column);
+
+  // A surface VTU is no volume; a VTU without tags cannot be used.
+  TriMesh tri = test::tetrahedron();
+  write_vtp(tmp.path("s.vtp"), tri);
+  EXPECT_THROW(read_vtu_volume(tmp.path("s.vtp")), InputError);
+  test::write_bytes(tmp.path("bad.vtu"), "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid></UnstructuredGrid></VTKFile>");
+  EXPECT_THROW(read_vtu_volume(tmp.path("bad.vtu")), InputError);
+}
+
 }  // namespace
 }  // namespace vesselmesh::io
