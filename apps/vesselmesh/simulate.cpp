@@ -3,6 +3,7 @@
 #include "commands.h"
 
 #include "flow/case.h"
+#include "flow/linear_solver.h"
 #include "flow/simulate.h"
 
 #include <fmt/format.h>
@@ -16,7 +17,8 @@ Command add_simulate_command(CLI::App& parent) {
       "'vesselmesh volume', as a TOML case file describes it (mesh, length_unit, [fluid], [time], one [[boundary]] "
       "per mesh tag: velocity | traction | resistance | wall, [solver] petsc_options; see examples/). Writes "
       "DIR/fluid.pvd (velocity m/s, pressure Pa), DIR/wall.pvd (wss, wss_magnitude in Pa), DIR/log.csv and "
-      "DIR/summary.json. The mesh's unit is scaled to SI (the scale is logged and written)");
+      "DIR/summary.json. The mesh's unit is scaled to SI (the scale is logged and written). Under "
+      "'mpirun -np K' the rows are shared among the K processes");
   struct Options {
     std::string case_file, output, petsc_options;
     CommonOptions common;
@@ -28,9 +30,11 @@ Command add_simulate_command(CLI::App& parent) {
                   "PETSc options applied after the case's [solver] petsc_options, e.g. \"-ksp_monitor\"");
   add_common_options(*app, o->common);
   return {app, [o] {
-            TerminalReporter reporter(o->common.quiet);
+            const bool first = flow::process_rank() == 0;  // under mpirun, the first process speaks
+            TerminalReporter reporter(o->common.quiet || !first);
             const flow::FlowCase fc = flow::read_case(o->case_file);
             const flow::SimulationSummary s = flow::simulate(fc, o->output, o->petsc_options, reporter);
+            if (!first) return 0;
             reporter.info(fmt::format("{} {} steps, {} dofs, {} linear iterations, {:.3g} s per step, {:.1f} s in all; "
                                       "results in {}",
                                       s.status, s.steps, s.dofs, s.linear_iterations, s.seconds_per_step, s.seconds,
@@ -40,6 +44,7 @@ Command add_simulate_command(CLI::App& parent) {
                               {"points", s.points},
                               {"tetrahedra", s.tetrahedra},
                               {"dofs", s.dofs},
+                              {"ranks", s.ranks},
                               {"steps", s.steps},
                               {"saved", s.saved},
                               {"linear_iterations", s.linear_iterations},

@@ -57,6 +57,13 @@ int process_count() {
   return size;
 }
 
+int process_rank() {
+  ensure_petsc();
+  PetscMPIInt rank = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  return rank;
+}
+
 std::string time_step_options() {
   return "-ksp_type gmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 100 -pc_type bjacobi -sub_pc_type ilu";
 }
@@ -78,8 +85,14 @@ struct LinearSolver::Impl {
   Vec rhs = nullptr, solution = nullptr;
   KSP ksp = nullptr;
   IS velocity = nullptr, pressure = nullptr;
+  bool distributed = false;
+  std::vector<PetscInt> starts, columns;  // the MPI matrix's CSR, kept for its updates
+  VecScatter gather = nullptr;            // the distributed solution to every process
+  Vec whole = nullptr;
 
   ~Impl() {
+    if (gather) VecScatterDestroy(&gather);
+    if (whole) VecDestroy(&whole);
     if (velocity) ISDestroy(&velocity);
     if (pressure) ISDestroy(&pressure);
     if (ksp) KSPDestroy(&ksp);
@@ -108,17 +121,29 @@ LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::str
     throw OptionError(fmt::format("PETSc cannot read the solver options \"{}\"", options));
   }
 
-  check(MatCreate(PETSC_COMM_SELF, &s.matrix), "MatCreate");
-  check(MatSetSizes(s.matrix, n, n, n, n), "MatSetSizes");
-  check(MatSetType(s.matrix, MATSEQAIJ), "MatSetType");
-  check(MatSetBlockSize(s.matrix, block_size), "MatSetBlockSize");
-  std::vector<PetscInt> starts(s.pattern.row_start.begin(), s.pattern.row_start.end());
-  std::vector<PetscInt> columns(s.pattern.columns.begin(), s.pattern.columns.end());
-  check(MatSeqAIJSetPreallocationCSR(s.matrix, starts.data(), columns.data(), nullptr), "preallocation");
+  const PetscInt N = s.pattern.total_rows();
+  s.distributed = process_count() > 1;
+  const MPI_Comm comm = s.distributed ? PETSC_COMM_WORLD : PETSC_COMM_SELF;
+  s.starts.assign(s.pattern.row_start.begin(), s.pattern.row_start.end());
+  s.columns.assign(s.pattern.columns.begin(), s.pattern.columns.end());
+  if (s.distributed) {
+    std::vector<PetscScalar> zeros(s.columns.size(), 0.0);
+    check(MatCreateMPIAIJWithArrays(comm, n, n, N, N, s.starts.data(), s.columns.data(), zeros.data(), &s.matrix),
+          "MatCreateMPIAIJWithArrays");
+    check(MatSetBlockSize(s.matrix, block_size), "MatSetBlockSize");
+  } else {
+    VM_CHECK(N == n && s.pattern.first_row == 0, "one process holds every row");
+    check(MatCreate(comm, &s.matrix), "MatCreate");
+    check(MatSetSizes(s.matrix, n, n, n, n), "MatSetSizes");
+    check(MatSetType(s.matrix, MATSEQAIJ), "MatSetType");
+    check(MatSetBlockSize(s.matrix, block_size), "MatSetBlockSize");
+    check(MatSeqAIJSetPreallocationCSR(s.matrix, s.starts.data(), s.columns.data(), nullptr), "preallocation");
+  }
   check(MatSetOption(s.matrix, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
   check(MatCreateVecs(s.matrix, &s.solution, &s.rhs), "MatCreateVecs");
+  if (s.distributed) check(VecScatterCreateToAll(s.solution, &s.gather, &s.whole), "VecScatterCreateToAll");
 
-  check(KSPCreate(PETSC_COMM_SELF, &s.ksp), "KSPCreate");
+  check(KSPCreate(comm, &s.ksp), "KSPCreate");
   check(KSPSetOperators(s.ksp, s.matrix, s.matrix), "KSPSetOperators");
   check(KSPSetInitialGuessNonzero(s.ksp, PETSC_TRUE), "KSPSetInitialGuessNonzero");
   if (KSPSetFromOptions(s.ksp) != 0) {
@@ -132,9 +157,10 @@ LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::str
   check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCFIELDSPLIT, &split), "PC type");
   if (split && block_size > 1) {
     std::vector<PetscInt> u, p;
-    for (PetscInt i = 0; i < n; ++i) (i % block_size == block_size - 1 ? p : u).push_back(i);
-    check(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(u.size()), u.data(), PETSC_COPY_VALUES, &s.velocity), "IS");
-    check(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(p.size()), p.data(), PETSC_COPY_VALUES, &s.pressure), "IS");
+    for (PetscInt i = s.pattern.first_row; i < s.pattern.first_row + n; ++i)
+      (i % block_size == block_size - 1 ? p : u).push_back(i);
+    check(ISCreateGeneral(comm, static_cast<PetscInt>(u.size()), u.data(), PETSC_COPY_VALUES, &s.velocity), "IS");
+    check(ISCreateGeneral(comm, static_cast<PetscInt>(p.size()), p.data(), PETSC_COPY_VALUES, &s.pressure), "IS");
     check(PCFieldSplitSetIS(pc, "u", s.velocity), "PCFieldSplitSetIS");
     check(PCFieldSplitSetIS(pc, "p", s.pressure), "PCFieldSplitSetIS");
   }
@@ -148,27 +174,40 @@ SolveStats LinearSolver::solve(const std::vector<double>& values, const std::vec
                                std::vector<double>& x) {
   Impl& s = *impl_;
   const int n = s.pattern.rows;
+  const int first = s.pattern.first_row, total = s.pattern.total_rows();
   VM_CHECK(static_cast<int>(values.size()) == s.pattern.nonzeros(), "matrix values do not match the pattern");
-  VM_CHECK(static_cast<int>(rhs.size()) == n && static_cast<int>(x.size()) == n, "vector sizes");
-  PetscScalar* a = nullptr;
-  check(MatSeqAIJGetArray(s.matrix, &a), "MatSeqAIJGetArray");
-  std::memcpy(a, values.data(), values.size() * sizeof(double));
-  check(MatSeqAIJRestoreArray(s.matrix, &a), "MatSeqAIJRestoreArray");
+  VM_CHECK(static_cast<int>(rhs.size()) == n && static_cast<int>(x.size()) == total, "vector sizes");
+  if (s.distributed) {
+    const PetscInt N = total;
+    check(MatUpdateMPIAIJWithArrays(s.matrix, n, n, N, N, s.starts.data(), s.columns.data(), values.data()),
+          "MatUpdateMPIAIJWithArrays");
+  } else {
+    PetscScalar* a = nullptr;
+    check(MatSeqAIJGetArray(s.matrix, &a), "MatSeqAIJGetArray");
+    std::memcpy(a, values.data(), values.size() * sizeof(double));
+    check(MatSeqAIJRestoreArray(s.matrix, &a), "MatSeqAIJRestoreArray");
+  }
 
   PetscScalar* v = nullptr;
   check(VecGetArray(s.rhs, &v), "VecGetArray");
   std::memcpy(v, rhs.data(), rhs.size() * sizeof(double));
   check(VecRestoreArray(s.rhs, &v), "VecRestoreArray");
   check(VecGetArray(s.solution, &v), "VecGetArray");
-  std::memcpy(v, x.data(), x.size() * sizeof(double));
+  std::memcpy(v, x.data() + first, static_cast<size_t>(n) * sizeof(double));
   check(VecRestoreArray(s.solution, &v), "VecRestoreArray");
 
   check(KSPSolve(s.ksp, s.rhs, s.solution), "KSPSolve");
 
+  Vec result = s.solution;
+  if (s.distributed) {
+    check(VecScatterBegin(s.gather, s.solution, s.whole, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    check(VecScatterEnd(s.gather, s.solution, s.whole, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+    result = s.whole;
+  }
   const PetscScalar* r = nullptr;
-  check(VecGetArrayRead(s.solution, &r), "VecGetArrayRead");
+  check(VecGetArrayRead(result, &r), "VecGetArrayRead");
   std::memcpy(x.data(), r, x.size() * sizeof(double));
-  check(VecRestoreArrayRead(s.solution, &r), "VecRestoreArrayRead");
+  check(VecRestoreArrayRead(result, &r), "VecRestoreArrayRead");
 
   SolveStats stats;
   PetscInt iterations = 0;

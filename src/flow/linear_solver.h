@@ -15,12 +15,17 @@
 
 namespace vesselmesh::flow {
 
-// Compressed rows with sorted column indices; `values` of a matrix follow this order.
+// Compressed rows with sorted (global) column indices; `values` of a matrix follow this order.
+// On several MPI processes each holds its own consecutive rows: `first_row` .. first_row + rows
+// of `global_rows` (the whole matrix on one process: first_row 0, global_rows = rows).
 struct SparsePattern {
   int rows = 0;
+  int first_row = 0;
+  int global_rows = 0;  // 0: rows
   std::vector<int> row_start;  // rows + 1 offsets
   std::vector<int> columns;
   int nonzeros() const { return static_cast<int>(columns.size()); }
+  int total_rows() const { return global_rows > 0 ? global_rows : rows; }
 };
 
 struct SolveStats {
@@ -40,8 +45,10 @@ std::string saddle_point_options();
 // with the field split.
 std::string time_step_options();
 
-// The number of MPI processes this program runs on (starts PETSc and MPI when needed).
+// The number of MPI processes this program runs on and this one's rank (start PETSc and MPI
+// when needed).
 int process_count();
+int process_rank();
 
 class LinearSolver {
  public:
@@ -53,8 +60,9 @@ class LinearSolver {
 
   const SparsePattern& pattern() const;
 
-  // Solves A x = b for the matrix with `values` (in the pattern's order); `x` holds the
-  // initial guess on entry (size rows) and the solution on return.
+  // Solves A x = b for the matrix with `values` (this process's rows, in the pattern's order)
+  // and `rhs` (this process's rows); `x` holds the whole initial guess on entry (total_rows) and
+  // the whole solution on return, on every process.
   SolveStats solve(const std::vector<double>& values, const std::vector<double>& rhs, std::vector<double>& x);
 
   // The Krylov method and preconditioner PETSc settled on, e.g. "fgmres + fieldsplit".

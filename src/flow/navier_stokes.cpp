@@ -74,10 +74,19 @@ struct NavierStokes::Impl {
 
   int n() const { return static_cast<int>(points.size()); }
 
-  // Offset of entry (node a's component i, node b's component j) from a's position k of b.
+  // This process's rows: the points node_begin .. node_end (all of them on one process).
+  int node_begin = 0, node_end = 0, first_row = 0, value_base = 0;
+  bool owns(int a) const { return a >= node_begin && a < node_end; }
+
+  // Offset (among this process's values) of entry (node a's component i, node b's component
+  // j) from a's position k of b, j = 0.
   int value_index(int a, int i, int k) const {
     const int degree = node_start[a + 1] - node_start[a];
-    return kBlock * kBlock * node_start[a] + i * kBlock * degree + kBlock * (k - node_start[a]);
+    return kBlock * kBlock * node_start[a] + i * kBlock * degree + kBlock * (k - node_start[a]) - value_base;
+  }
+  int self_slot(int a) const {
+    return static_cast<int>(std::lower_bound(node_columns.begin() + node_start[a], node_columns.begin() + node_start[a + 1], a) -
+                            node_columns.begin());
   }
 
   void build(const TetMesh& mesh);
@@ -148,13 +157,22 @@ void NavierStokes::Impl::build(const TetMesh& mesh) {
         tet_slots[e][a * 4 + b] = static_cast<int>(std::lower_bound(first, last, tets[e][b]) - node_columns.begin());
       }
 
+  // This process's points: consecutive ranges of equal size over the processes.
+  const int ranks = process_count(), rank = process_rank();
+  node_begin = static_cast<int>(static_cast<long long>(nn) * rank / ranks);
+  node_end = static_cast<int>(static_cast<long long>(nn) * (rank + 1) / ranks);
+  first_row = kBlock * node_begin;
+  value_base = kBlock * kBlock * node_start[node_begin];
+
   // The dof pattern: row (a, i) holds every neighbour's four components.
-  pattern.rows = kBlock * nn;
+  pattern.rows = kBlock * (node_end - node_begin);
+  pattern.first_row = first_row;
+  pattern.global_rows = kBlock * nn;
   pattern.row_start.assign(pattern.rows + 1, 0);
-  pattern.columns.resize(static_cast<size_t>(kBlock) * kBlock * node_start[nn]);
-  for (int a = 0; a < nn; ++a)
+  pattern.columns.resize(static_cast<size_t>(kBlock) * kBlock * (node_start[node_end] - node_start[node_begin]));
+  for (int a = node_begin; a < node_end; ++a)
     for (int i = 0; i < kBlock; ++i) {
-      const int row = kBlock * a + i;
+      const int row = kBlock * a + i - first_row;
       int at = value_index(a, i, node_start[a]);
       pattern.row_start[row] = at;
       for (int k = node_start[a]; k < node_start[a + 1]; ++k)
@@ -198,7 +216,7 @@ void NavierStokes::Impl::build_boundaries(const TetMesh& mesh) {
       for (const BoundaryFace& f : b.faces)
         for (int v : f.v) on_wall[v] = 1;
 
-  fixed.assign(pattern.rows, 0);
+  fixed.assign(pattern.total_rows(), 0);
   for (Boundary& b : boundaries) {
     std::set<int> nodes;
     for (const BoundaryFace& f : b.faces) nodes.insert(f.v.begin(), f.v.end());
@@ -268,7 +286,7 @@ void NavierStokes::Impl::build_boundaries(const TetMesh& mesh) {
 }
 
 void NavierStokes::Impl::set_dirichlet(double time) {
-  dirichlet.assign(pattern.rows, 0.0);
+  dirichlet.assign(pattern.total_rows(), 0.0);
   for (const Boundary& b : boundaries) {
     if (b.condition.type != BoundaryType::velocity) continue;
     const double q = b.condition.flow(time) * 1e-6;  // mL/s -> m3/s, positive into the domain
@@ -318,6 +336,7 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
   double F[16];
   for (size_t e = 0; e < tets.size(); ++e) {
     const Tet& t4 = tets[e];
+    if (!owns(t4[0]) && !owns(t4[1]) && !owns(t4[2]) && !owns(t4[3])) continue;
     const auto& g = gradients[e];
     const double V = volumes[e];
     Vec3 ubar = Vec3::Zero(), hbar = Vec3::Zero();
@@ -357,19 +376,20 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
     // Scatter, moving known Dirichlet values to the right-hand side.
     for (int a = 0; a < 4; ++a) {
       const int na = t4[a];
+      if (!owns(na)) continue;
       for (int i = 0; i < kBlock; ++i) {
         const int row = kBlock * na + i;
         if (fixed[row]) {
-          diagonal[row] += K[4 * a + i][4 * a + i];
+          diagonal[row - first_row] += K[4 * a + i][4 * a + i];
           continue;
         }
-        rhs[row] += F[4 * a + i];
+        rhs[row - first_row] += F[4 * a + i];
         for (int b = 0; b < 4; ++b) {
           const int base = value_index(na, i, tet_slots[e][a * 4 + b]);
           const int nb = t4[b];
           for (int j = 0; j < kBlock; ++j) {
             const int column = kBlock * nb + j;
-            if (fixed[column]) rhs[row] -= K[4 * a + i][4 * b + j] * dirichlet[column];
+            if (fixed[column]) rhs[row - first_row] -= K[4 * a + i][4 * b + j] * dirichlet[column];
             else values[base + j] += K[4 * a + i][4 * b + j];
           }
         }
@@ -387,10 +407,11 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
       const double beta = 0.5 * fc.backflow * inflow;
       for (int a = 0; a < 3; ++a) {
         const int na = f.v[a];
+        if (!owns(na)) continue;
         for (int i = 0; i < 3; ++i) {
           const int row = kBlock * na + i;
           if (fixed[row]) continue;
-          rhs[row] -= resistance_pressure[k] * f.normal[i] * f.area / 3.0;
+          rhs[row - first_row] -= resistance_pressure[k] * f.normal[i] * f.area / 3.0;
           if (beta == 0.0) continue;
           for (int bb = 0; bb < 3; ++bb) {
             const int nb = f.v[bb];
@@ -405,17 +426,14 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
   }
 
   // Dirichlet rows: the diagonal the elements gave them, times the known value.
-  for (int a = 0; a < n(); ++a)
+  for (int a = node_begin; a < node_end; ++a)
     for (int i = 0; i < kBlock; ++i) {
       const int row = kBlock * a + i;
       if (!fixed[row]) continue;
-      double d = std::abs(diagonal[row]);
+      double d = std::abs(diagonal[row - first_row]);
       if (!(d > 0.0)) d = 1.0;
-      values[value_index(a, i, static_cast<int>(std::lower_bound(node_columns.begin() + node_start[a],
-                                                                   node_columns.begin() + node_start[a + 1], a) -
-                                                  node_columns.begin())) +
-             i] = d;
-      rhs[row] = d * dirichlet[row];
+      values[value_index(a, i, self_slot(a)) + i] = d;
+      rhs[row - first_row] = d * dirichlet[row];
     }
 }
 
@@ -423,7 +441,7 @@ void NavierStokes::Impl::solve_system(StepReport& report, const std::string& whe
   if (!solver)
     solver = std::make_unique<LinearSolver>(pattern, kBlock, fc.steady ? saddle_point_options() : time_step_options(),
                                             fc.petsc_options);
-  x.assign(pattern.rows, 0.0);
+  x.assign(pattern.total_rows(), 0.0);
   for (int a = 0; a < n(); ++a) {
     for (int i = 0; i < 3; ++i) x[kBlock * a + i] = u[a][i];
     x[kBlock * a + 3] = p[a];
@@ -572,7 +590,7 @@ void NavierStokes::set_state(const std::vector<Vec3>& velocity, double time) {
 
 double NavierStokes::time() const { return impl_->t; }
 int NavierStokes::steps() const { return impl_->step_count; }
-int NavierStokes::dofs() const { return impl_->pattern.rows; }
+int NavierStokes::dofs() const { return impl_->pattern.total_rows(); }
 const std::vector<Vec3>& NavierStokes::velocity() const { return impl_->u; }
 
 std::vector<double> NavierStokes::pressure() const {

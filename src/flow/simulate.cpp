@@ -50,11 +50,12 @@ std::string pvd(const std::vector<std::pair<double, std::string>>& files, const 
 }  // namespace
 
 SimulationSummary simulate(const FlowCase& input_case, const std::string& output_dir,
-                           const std::string& extra_petsc_options, const Reporter& reporter) {
+                           const std::string& extra_petsc_options, const Reporter& all_reporter) {
   const auto start = Clock::now();
-  if (process_count() > 1)
-    throw OptionError("simulate runs on one process for now (the distributed solve is not there yet): run it without "
-                      "mpirun");
+  // Under mpirun every process reads the mesh and assembles its own rows; the first writes.
+  const int ranks = process_count();
+  const bool writer = process_rank() == 0;
+  const Reporter& reporter = writer ? all_reporter : silent_reporter();
   FlowCase fc = input_case;
   if (!extra_petsc_options.empty()) fc.petsc_options += " " + extra_petsc_options;
   const TetMesh mesh = read_mesh(fc);
@@ -73,13 +74,15 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   std::vector<Vec3> si(mesh.points.size());
   for (size_t i = 0; i < si.size(); ++i) si[i] = mesh.points[i] * fc.length_scale;
 
-  std::filesystem::create_directories(output_dir);
+  if (writer) std::filesystem::create_directories(output_dir);
+  if (ranks > 1) reporter.info(fmt::format("{} MPI processes, about {} points each", ranks, mesh.num_points() / ranks));
   const std::string units = fmt::format("points in {} (x {:g} m), velocity m/s, pressure Pa, wss Pa, time s",
                                         fc.length_unit, fc.length_scale);
   SimulationSummary summary;
   summary.points = mesh.num_points();
   summary.tetrahedra = static_cast<int>(all.size());
   summary.dofs = ns.dofs();
+  summary.ranks = ranks;
   summary.length_scale = fc.length_scale;
   summary.setup_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   std::vector<std::pair<double, std::string>> fluid_files, wall_files;
@@ -90,6 +93,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   log += ",linear_iterations,max_cfl,assembly_seconds,solve_seconds,seconds\n";
 
   const auto write_summary = [&]() {
+    if (!writer) return;
     nlohmann::ordered_json j;
     j["status"] = summary.status;
     j["case"] = fc.path;
@@ -99,7 +103,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     j["points"] = summary.points;
     j["tetrahedra"] = summary.tetrahedra;
     j["dofs"] = summary.dofs;
-    j["ranks"] = 1;
+    j["ranks"] = ranks;
     j["steady"] = fc.steady;
     j["steps"] = summary.steps;
     j["saved"] = summary.saved;
@@ -116,6 +120,10 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
 
   const auto save = [&](double time) {
     const std::string name = fmt::format("{:06d}", summary.saved);
+    if (!writer) {
+      summary.saved += 1;
+      return;
+    }
     std::vector<double> pressure = ns.pressure();
     io::write_vtu(output_dir + "/fluid_" + name + ".vtu", mesh,
                   {Field::vector("velocity", ns.velocity()), Field::scalar("pressure", pressure)});
@@ -164,7 +172,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   } catch (const ComputationError&) {
     summary.status = "diverged";
     summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    write_text(output_dir + "/log.csv", log);
+    if (writer) write_text(output_dir + "/log.csv", log);
     write_summary();
     throw;
   }

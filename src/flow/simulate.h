@@ -11,6 +11,8 @@
 // Points stay in the mesh's unit (named in summary.json and in the PVD files); the fields are
 // SI. Every file is written whole (atomically); the PVD collections, log and summary are
 // rewritten at each save, so a run that stops early leaves a consistent folder behind.
+// Under `mpirun -np K` each process reads the mesh, assembles the rows of its share of the
+// points (consecutive ranges) and holds the whole solution; the first process writes.
 #pragma once
 
 #include "flow/case.h"
@@ -22,7 +24,7 @@ namespace vesselmesh::flow {
 
 struct SimulationSummary {
   std::string status;  // "completed" or "diverged"
-  int points = 0, tetrahedra = 0, dofs = 0;
+  int points = 0, tetrahedra = 0, dofs = 0, ranks = 1;
   int steps = 0, saved = 0, linear_iterations = 0;
   double seconds = 0.0, seconds_per_step = 0.0, setup_seconds = 0.0;
   double length_scale = 1e-3;

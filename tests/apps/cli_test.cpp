@@ -431,6 +431,47 @@ TEST(Cli, SimulateRunsTheExampleCase) {
   EXPECT_FALSE(std::filesystem::exists(tmp.path("bad-out")));
 }
 
+// mpirun -np 2 gives the one-process results to the solver's tolerance (issue 8).
+TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
+  if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun is not installed";
+  test::TemporaryFolder tmp;
+  ASSERT_EQ(run({"synth", "cylinder", "--radius", "2", "--length", "8", "--resolution", "0.5", "-o", tmp.path("p.stl")}).code, 0);
+  ASSERT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("pipe.msh"), "-q"}).code, 0);
+  std::string text = read_text(std::string(VESSELMESH_EXAMPLES_DIR) + "/pipe_pulsatile.toml");
+  const auto replace = [&](const std::string& from, const std::string& to) { text.replace(text.find(from), from.size(), to); };
+  replace("../build/pipe.msh", "pipe.msh");
+  replace("cycles = 2", "end = 0.02");
+  replace("period = 0.8", "");
+  replace("waveform = \"pulse.csv\"", "waveform = \"" + std::string(VESSELMESH_EXAMPLES_DIR) + "/pulse.csv\"");
+  replace("petsc_options = \"\"", "petsc_options = \"-ksp_rtol 1e-10\"");
+  test::write_bytes(tmp.path("case.toml"), text);
+  ASSERT_EQ(run({"simulate", tmp.path("case.toml"), "-o", tmp.path("one"), "-q"}).code, 0);
+  const std::string command = "mpirun --allow-run-as-root --oversubscribe -np 2 " + quote(VESSELMESH_PROGRAM) +
+                              " simulate " + quote(tmp.path("case.toml")) + " -o " + quote(tmp.path("two")) +
+                              " --json >" + quote(tmp.path("two.json")) + " 2>" + quote(tmp.path("two.err"));
+  ASSERT_EQ(std::system(command.c_str()), 0) << read_text(tmp.path("two.err"));
+  const Json two = Json::parse(read_text(tmp.path("two.json")));
+  EXPECT_EQ(two["ranks"].get<int>(), 2);
+  const Json one = Json::parse(read_text(tmp.path("one/summary.json")));
+  EXPECT_EQ(one["ranks"].get<int>(), 1);
+  EXPECT_EQ(two["dofs"], one["dofs"]);
+  const auto wss = [&](const std::string& folder) {
+    const io::SurfaceData wall = io::read_vtk_surface(tmp.path(folder + "/wall_000000.vtp"), io::VtkFormat::vtp);
+    for (const Field& f : wall.point_data)
+      if (f.name == "wss") return f.values;
+    return std::vector<double>{};
+  };
+  const std::vector<double> a = wss("one"), b = wss("two");
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_FALSE(a.empty());
+  double largest = 0.0, difference = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    largest = std::max(largest, std::abs(a[i]));
+    difference = std::max(difference, std::abs(a[i] - b[i]));
+  }
+  EXPECT_LT(difference, 1e-6 * largest) << "largest wss " << largest << " Pa";
+}
+
 TEST(Cli, DemoWritesItsOutputs) {
   test::TemporaryFolder tmp;
   const RunResult r = run({"demo", "-o", tmp.path("demo"), "--json"});
