@@ -14,7 +14,6 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include <unistd.h>
@@ -49,14 +48,6 @@ fs::path data_folder() {
                                kDemoVessel, VESSELMESH_SOURCE_DATA_DIR));
 }
 
-void write_text(const fs::path& path, const std::string& text) {
-  io::write_atomically(path.string(), [&](const std::string& temporary) {
-    std::ofstream out(temporary);
-    out << text;
-    if (!out.flush()) throw InputError(fmt::format("{}: write failed", path.string()));
-  });
-}
-
 }  // namespace
 
 Command add_demo_command(CLI::App& parent) {
@@ -87,8 +78,8 @@ Command add_demo_command(CLI::App& parent) {
             reporter.info(fmt::format("stage 1: checking {}", input.string()));
             const CheckedSurface surface = check_surface(input.string(), check, reporter);
             const Json info = describe(surface);
-            write_text(folder / "surface_info.json", info.dump(2) + "\n");
-            write_text(folder / "surface_info.txt", describe_as_text(surface));
+            io::write_text((folder / "surface_info.json").string(), info.dump(2) + "\n");
+            io::write_text((folder / "surface_info.txt").string(), describe_as_text(surface));
             write_repaired((folder / "surface.vtp").string(), surface);
 
             // Stage 2: curvature (drives the curvature-adapted meshes).
@@ -157,9 +148,7 @@ Command add_demo_command(CLI::App& parent) {
               if (end.name != "inlet")
                 case_text += fmt::format("[[boundary]]\ntag = \"{}\"\ntype = \"traction\"\n", end.name);
             case_text += "[[boundary]]\ntag = \"wall\"\ntype = \"wall\"\n";
-            io::write_atomically((folder / "flow.toml").string(), [&](const std::string& temporary) {
-              std::ofstream(temporary) << case_text;
-            });
+            io::write_text((folder / "flow.toml").string(), case_text);
             const flow::SimulationSummary flow_summary =
                 flow::simulate(flow::read_case((folder / "flow.toml").string()), (folder / "flow").string(), "", reporter);
             remeshed.emplace_back("volume.msh", "the same volume mesh as Gmsh MSH 4.1, for the solver");

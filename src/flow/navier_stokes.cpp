@@ -61,7 +61,6 @@ struct NavierStokes::Impl {
   SparsePattern pattern;
   std::vector<Boundary> boundaries;
   std::vector<char> fixed;  // per dof: Dirichlet
-  int pinned_pressure = -1;
   std::unique_ptr<LinearSolver> solver;
 
   // State.
@@ -84,9 +83,10 @@ struct NavierStokes::Impl {
     const int degree = node_start[a + 1] - node_start[a];
     return kBlock * kBlock * node_start[a] + i * kBlock * degree + kBlock * (k - node_start[a]) - value_base;
   }
-  int self_slot(int a) const {
-    return static_cast<int>(std::lower_bound(node_columns.begin() + node_start[a], node_columns.begin() + node_start[a + 1], a) -
-                            node_columns.begin());
+  // Position of b among a's neighbours in the node graph.
+  int slot(int a, int b) const {
+    const auto first = node_columns.begin() + node_start[a], last = node_columns.begin() + node_start[a + 1];
+    return static_cast<int>(std::lower_bound(first, last, b) - node_columns.begin());
   }
 
   void build(const TetMesh& mesh);
@@ -97,6 +97,10 @@ struct NavierStokes::Impl {
   void solve_system(StepReport& report, const std::string& where);
   double cfl(const std::vector<Vec3>& advect, double dt) const;
   double flux(const Boundary& b, const std::vector<Vec3>& velocity) const;
+  // The resistance boundaries' pressure (over rho) from the current outflow.
+  void update_resistance();
+  // Copies the solved x into velocity and pressure; returns the velocity's relative change.
+  double take_solution(std::vector<Vec3>& velocity, std::vector<double>& pressure) const;
   void check_finite(const StepReport& report) const;
 };
 
@@ -112,17 +116,13 @@ void NavierStokes::Impl::build(const TetMesh& mesh) {
   least_height.resize(tets.size());
   for (size_t e = 0; e < tets.size(); ++e) {
     const Tet& t4 = tets[e];
-    const Vec3& a = points[t4[0]];
-    const Vec3 d1 = points[t4[1]] - a, d2 = points[t4[2]] - a, d3 = points[t4[3]] - a;
-    const double v6 = d1.cross(d2).dot(d3);
+    double v6 = 0.0;
+    gradients[e] = mesh::barycentric_gradients(points[t4[0]], points[t4[1]], points[t4[2]], points[t4[3]], v6);
     if (!(v6 > 0.0))
       throw InputError(fmt::format("{}: tetrahedron {} is inverted or flat (six times its volume {:.3g} m3, at "
                                    "({:.4g}, {:.4g}, {:.4g}) in mesh units): mend the mesh first",
                                    fc.mesh, e, v6, mesh.points[t4[0]].x(), mesh.points[t4[0]].y(),
                                    mesh.points[t4[0]].z()));
-    // Rows of the inverse Jacobian are the gradients of phi_1..phi_3.
-    const Vec3 g1 = d2.cross(d3) / v6, g2 = d3.cross(d1) / v6, g3 = d1.cross(d2) / v6;
-    gradients[e] = {-(g1 + g2 + g3), g1, g2, g3};
     volumes[e] = v6 / 6.0;
     double largest = 0.0;
     for (const Vec3& g : gradients[e]) largest = std::max(largest, g.norm());
@@ -151,11 +151,7 @@ void NavierStokes::Impl::build(const TetMesh& mesh) {
   tet_slots.resize(tets.size());
   for (size_t e = 0; e < tets.size(); ++e)
     for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) {
-        const int na = tets[e][a];
-        const auto first = node_columns.begin() + node_start[na], last = node_columns.begin() + node_start[na + 1];
-        tet_slots[e][a * 4 + b] = static_cast<int>(std::lower_bound(first, last, tets[e][b]) - node_columns.begin());
-      }
+      for (int b = 0; b < 4; ++b) tet_slots[e][a * 4 + b] = slot(tets[e][a], tets[e][b]);
 
   // This process's points: consecutive ranges of equal size over the processes.
   const int ranks = process_count(), rank = process_rank();
@@ -182,15 +178,9 @@ void NavierStokes::Impl::build(const TetMesh& mesh) {
 }
 
 void NavierStokes::Impl::build_boundaries(const TetMesh& mesh) {
+  const std::map<int, std::string> tag_name = mesh::boundary_tag_names(mesh);
   std::vector<std::string> names;
-  for (const auto& [tag, name] : mesh.tag_names) names.push_back(name);
-  // Tags used by triangles but without a name are named by their number.
-  std::map<int, std::string> tag_name = mesh.tag_names;
-  for (int tag : mesh.boundary_tags)
-    if (!tag_name.count(tag)) {
-      tag_name[tag] = std::to_string(tag);
-      names.push_back(std::to_string(tag));
-    }
+  for (const auto& [tag, name] : tag_name) names.push_back(name);
   check_tags(fc, names);
 
   std::map<std::string, int> index;
@@ -228,46 +218,43 @@ void NavierStokes::Impl::build_boundaries(const TetMesh& mesh) {
         for (int i = 0; i < 3; ++i) fixed[kBlock * v + i] = 1;
     if (b.condition.type != BoundaryType::velocity) continue;
 
-    // The profile's shape, normalized to a unit discrete flux.
+    // The profile: per point its distance from the end's centre over the radius of a disc of
+    // the end's area (wall points: none), each shape scaled to a unit discrete flux.
     const double radius = std::sqrt(b.area / M_PI);
-    std::map<int, double> shape;
-    for (int v : b.nodes) {
-      double value = 0.0;
-      if (!on_wall[v]) {
-        if (b.condition.profile == Profile::plug) {
-          value = 1.0;
-        } else {
-          const Vec3 d = points[v] - b.center;
-          const double r2 = (d - d.dot(b.normal) * b.normal).squaredNorm();
-          value = std::max(0.0, 1.0 - r2 / (radius * radius));
-        }
-      }
-      shape[v] = value;
+    std::map<int, int> local;  // point -> index in b.nodes
+    std::vector<double> rho(b.nodes.size(), -1.0);
+    for (size_t k = 0; k < b.nodes.size(); ++k) {
+      const int v = b.nodes[k];
+      local[v] = static_cast<int>(k);
+      const Vec3 d = points[v] - b.center;
+      if (!on_wall[v]) rho[k] = (d - d.dot(b.normal) * b.normal).norm() / radius;
     }
-    double unit = 0.0;
-    for (const BoundaryFace& f : b.faces) unit += f.area / 3.0 * (shape[f.v[0]] + shape[f.v[1]] + shape[f.v[2]]);
-    if (!(unit > 0.0))
-      throw InputError(fmt::format("{}: velocity boundary \"{}\" has no point off the wall: its profile would carry no "
-                                   "flow (is the tag on the end's cap?)",
-                                   fc.path, b.condition.tag));
-    for (int v : b.nodes) b.shape.push_back(shape[v] / unit);
+    const auto unit_flux = [&](auto shape) {  // shape: per node of b.nodes, real or complex
+      auto flux = shape[0] * 0.0;
+      for (const BoundaryFace& f : b.faces)
+        flux += f.area / 3.0 * (shape[local[f.v[0]]] + shape[local[f.v[1]]] + shape[local[f.v[2]]]);
+      if (!(std::abs(flux) > 0.0))
+        throw InputError(fmt::format("{}: velocity boundary \"{}\" has no point off the wall: its profile would carry "
+                                     "no flow (is the tag on the end's cap?)",
+                                     fc.path, b.condition.tag));
+      for (auto& value : shape) value /= flux;
+      return shape;
+    };
+    std::vector<double> shape(b.nodes.size(), 0.0);
+    for (size_t k = 0; k < b.nodes.size(); ++k)
+      if (rho[k] >= 0.0)
+        shape[k] = b.condition.profile == Profile::plug ? 1.0 : std::max(0.0, 1.0 - rho[k] * rho[k]);
+    b.shape = unit_flux(shape);
 
     if (b.condition.profile == Profile::womersley) {
       const Womersley w = Womersley::from_waveform(b.condition.flow, b.condition.harmonics, radius, nu);
       b.harmonic_flow = w.coefficients();
       b.omega = w.omega();
       for (int h = 0; h < w.harmonics(); ++h) {
-        std::map<int, Complex> nodal;
-        for (int v : b.nodes) {
-          const Vec3 d = points[v] - b.center;
-          const double rho = std::min(1.0, std::sqrt((d - d.dot(b.normal) * b.normal).squaredNorm()) / radius);
-          nodal[v] = on_wall[v] ? Complex(0.0) : w.shape(h, rho);
-        }
-        Complex flux(0.0);
-        for (const BoundaryFace& f : b.faces) flux += f.area / 3.0 * (nodal[f.v[0]] + nodal[f.v[1]] + nodal[f.v[2]]);
-        std::vector<Complex> scaled;
-        for (int v : b.nodes) scaled.push_back(nodal[v] / flux);
-        b.harmonic_shape.push_back(std::move(scaled));
+        std::vector<Complex> nodal(b.nodes.size(), Complex(0.0));
+        for (size_t k = 0; k < b.nodes.size(); ++k)
+          if (rho[k] >= 0.0) nodal[k] = w.shape(h, std::min(1.0, rho[k]));
+        b.harmonic_shape.push_back(unit_flux(nodal));
       }
       reporter->info(fmt::format("boundary {}: Womersley profile, alpha {:.3g}, {} harmonics of period {:.4g} s",
                                  b.condition.tag, w.alpha(), w.harmonics() - 1,
@@ -279,8 +266,7 @@ void NavierStokes::Impl::build_boundaries(const TetMesh& mesh) {
   for (const Boundary& b : boundaries)
     natural |= b.condition.type == BoundaryType::traction || b.condition.type == BoundaryType::resistance;
   if (!natural) {
-    pinned_pressure = kBlock * 0 + 3;
-    fixed[pinned_pressure] = 1;
+    fixed[3] = 1;  // point 0's pressure
   }
   resistance_pressure.assign(boundaries.size(), 0.0);
 }
@@ -311,6 +297,24 @@ double NavierStokes::Impl::flux(const Boundary& b, const std::vector<Vec3>& velo
   for (const BoundaryFace& f : b.faces)
     q += f.area / 3.0 * (velocity[f.v[0]] + velocity[f.v[1]] + velocity[f.v[2]]).dot(f.normal);
   return q;
+}
+
+void NavierStokes::Impl::update_resistance() {
+  for (size_t k = 0; k < boundaries.size(); ++k)
+    if (boundaries[k].condition.type == BoundaryType::resistance)
+      resistance_pressure[k] = boundaries[k].condition.resistance * flux(boundaries[k], u) / fc.density;
+}
+
+double NavierStokes::Impl::take_solution(std::vector<Vec3>& velocity, std::vector<double>& pressure) const {
+  double change = 0.0, size = 0.0;
+  for (int a = 0; a < n(); ++a) {
+    const Vec3 v(x[kBlock * a], x[kBlock * a + 1], x[kBlock * a + 2]);
+    change += (v - velocity[a]).squaredNorm();
+    size += v.squaredNorm();
+    velocity[a] = v;
+    pressure[a] = x[kBlock * a + 3];
+  }
+  return size > 0.0 ? std::sqrt(change / size) : 0.0;
 }
 
 double NavierStokes::Impl::cfl(const std::vector<Vec3>& advect, double dt) const {
@@ -416,9 +420,7 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
           for (int bb = 0; bb < 3; ++bb) {
             const int nb = f.v[bb];
             if (fixed[kBlock * nb + i]) continue;
-            const auto first = node_columns.begin() + node_start[na], last = node_columns.begin() + node_start[na + 1];
-            const int slot = static_cast<int>(std::lower_bound(first, last, nb) - node_columns.begin());
-            values[value_index(na, i, slot) + i] += beta * f.area / 12.0 * (a == bb ? 2.0 : 1.0);
+            values[value_index(na, i, slot(na, nb)) + i] += beta * f.area / 12.0 * (a == bb ? 2.0 : 1.0);
           }
         }
       }
@@ -432,7 +434,7 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
       if (!fixed[row]) continue;
       double d = std::abs(diagonal[row - first_row]);
       if (!(d > 0.0)) d = 1.0;
-      values[value_index(a, i, self_slot(a)) + i] = d;
+      values[value_index(a, i, slot(a, a)) + i] = d;
       rhs[row - first_row] = d * dirichlet[row];
     }
 }
@@ -504,9 +506,7 @@ StepReport NavierStokes::step() {
     history[a] = (first ? s.u[a] : Vec3(2.0 * s.u[a] - 0.5 * s.u_old[a])) / dt;
     advect[a] = first ? s.u[a] : Vec3(2.0 * s.u[a] - s.u_old[a]);
   }
-  for (size_t k = 0; k < s.boundaries.size(); ++k)
-    if (s.boundaries[k].condition.type == BoundaryType::resistance)
-      s.resistance_pressure[k] = s.boundaries[k].condition.resistance * s.flux(s.boundaries[k], s.u) / s.fc.density;
+  s.update_resistance();
   s.set_dirichlet(t_next);
   report.max_cfl = s.cfl(advect, dt);
   report.time = t_next;
@@ -518,15 +518,7 @@ StepReport NavierStokes::step() {
     s.assemble(advect, history, alpha0 / dt, dt);
     report.assembly_seconds += seconds_since(assembly);
     s.solve_system(report, fmt::format("step {} (t = {:.6g} s)", report.step, t_next));
-    double change = 0.0, size = 0.0;
-    for (int a = 0; a < s.n(); ++a) {
-      const Vec3 v(s.x[kBlock * a], s.x[kBlock * a + 1], s.x[kBlock * a + 2]);
-      change += (v - next[a]).squaredNorm();
-      size += v.squaredNorm();
-      next[a] = v;
-      next_p[a] = s.x[kBlock * a + 3];
-    }
-    report.change = size > 0.0 ? std::sqrt(change / size) : 0.0;
+    report.change = s.take_solution(next, next_p);
     advect = next;
   }
   s.u_old = std::move(s.u);
@@ -546,22 +538,12 @@ StepReport NavierStokes::solve_steady() {
   s.set_dirichlet(0.0);
   std::vector<Vec3> advect(s.n(), Vec3::Zero()), none(s.n(), Vec3::Zero());
   for (int iteration = 0; iteration < s.fc.steady_iterations; ++iteration) {
-    for (size_t k = 0; k < s.boundaries.size(); ++k)
-      if (s.boundaries[k].condition.type == BoundaryType::resistance)
-        s.resistance_pressure[k] = s.boundaries[k].condition.resistance * s.flux(s.boundaries[k], s.u) / s.fc.density;
+    s.update_resistance();
     const auto assembly = Clock::now();
     s.assemble(advect, none, 0.0, 0.0);
     report.assembly_seconds += seconds_since(assembly);
     s.solve_system(report, fmt::format("steady Picard iteration {}", iteration + 1));
-    double change = 0.0, size = 0.0;
-    for (int a = 0; a < s.n(); ++a) {
-      const Vec3 v(s.x[kBlock * a], s.x[kBlock * a + 1], s.x[kBlock * a + 2]);
-      change += (v - s.u[a]).squaredNorm();
-      size += v.squaredNorm();
-      s.u[a] = v;
-      s.p[a] = s.x[kBlock * a + 3];
-    }
-    report.change = size > 0.0 ? std::sqrt(change / size) : 0.0;
+    report.change = s.take_solution(s.u, s.p);
     report.step = iteration + 1;
     s.check_finite(report);
     s.reporter->info(fmt::format("steady iteration {}: velocity change {:.3e}, {} linear iterations", iteration + 1,

@@ -13,7 +13,6 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 
 namespace vesselmesh::flow {
 namespace {
@@ -29,14 +28,6 @@ TetMesh read_mesh(const FlowCase& c) {
   throw InputError(fmt::format("{}: mesh \"{}\": a volume mesh is read from .msh (Gmsh) or .vtu (with cell data "
                                "`tag`), as `vesselmesh volume` writes them",
                                c.path, c.mesh));
-}
-
-void write_text(const std::string& path, const std::string& text) {
-  io::write_atomically(path, [&](const std::string& temporary) {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    if (!out) throw InputError(fmt::format("cannot write {}", path));
-  });
 }
 
 std::string pvd(const std::vector<std::pair<double, std::string>>& files, const std::string& units) {
@@ -66,7 +57,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   NavierStokes ns(mesh, fc, reporter);
 
   std::vector<int> wall_tags;
-  for (const auto& [tag, name] : mesh.tag_names)
+  for (const auto& [tag, name] : mesh::boundary_tag_names(mesh))
     for (const BoundaryCondition& b : fc.boundaries)
       if (b.tag == name && b.type == BoundaryType::wall) wall_tags.push_back(tag);
   const std::vector<Tet> all = mesh::all_tetrahedra(mesh);
@@ -115,7 +106,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
         summary.dofs > 0 ? summary.seconds_per_step / (summary.dofs * 1e-6) : 0.0;
     j["solver"] = summary.solver;
     j["petsc_options"] = fc.petsc_options;
-    write_text(output_dir + "/summary.json", j.dump(2) + "\n");
+    io::write_text(output_dir + "/summary.json", j.dump(2) + "\n");
   };
 
   const auto save = [&](double time) {
@@ -135,9 +126,9 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     fluid_files.emplace_back(time, "fluid_" + name + ".vtu");
     wall_files.emplace_back(time, "wall_" + name + ".vtp");
     summary.saved += 1;
-    write_text(output_dir + "/fluid.pvd", pvd(fluid_files, units));
-    write_text(output_dir + "/wall.pvd", pvd(wall_files, units));
-    write_text(output_dir + "/log.csv", log);
+    io::write_text(output_dir + "/fluid.pvd", pvd(fluid_files, units));
+    io::write_text(output_dir + "/wall.pvd", pvd(wall_files, units));
+    io::write_text(output_dir + "/log.csv", log);
   };
 
   const auto log_step = [&](const StepReport& r) {
@@ -172,7 +163,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   } catch (const ComputationError&) {
     summary.status = "diverged";
     summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    if (writer) write_text(output_dir + "/log.csv", log);
+    if (writer) io::write_text(output_dir + "/log.csv", log);
     write_summary();
     throw;
   }

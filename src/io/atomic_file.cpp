@@ -45,6 +45,14 @@ void write_atomically(const std::string& path, const std::function<void(const st
   }
 }
 
+void write_text(const std::string& path, const std::string& text) {
+  write_atomically(path, [&](const std::string& temporary) {
+    std::ofstream out(temporary, std::ios::binary);
+    out << text;
+    if (!out.flush()) throw InputError(fmt::format("{}: write failed", path));
+  });
+}
+
 std::string read_file(const std::string& path) {
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw InputError(fmt::format("{}: is a folder, not a file", path));

@@ -13,6 +13,9 @@ namespace vesselmesh::io {
 // Throws InputError when the folder cannot be written; rethrows what `write` throws.
 void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
 
+// Writes `text` to `path` atomically (write_atomically); InputError when it cannot.
+void write_text(const std::string& path, const std::string& text);
+
 // Reads a whole file into memory. Throws InputError naming the file when it cannot be read.
 std::string read_file(const std::string& path);
 

@@ -28,6 +28,32 @@ void gmsh_nodes(const std::vector<Vec3>& points, std::vector<std::size_t>& tags,
     coords.insert(coords.end(), {points[i].x(), points[i].y(), points[i].z()});
   }
 }
+
+void require_file(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("{}: cannot open: no such file", path));
+}
+
+// Opens an MSH file in the current Gmsh session; every node's tag and xyz.
+void open_with_nodes(const std::string& path, std::vector<std::size_t>& tags, std::vector<double>& coords) {
+  gmsh::open(path);
+  std::vector<double> parametric;
+  gmsh::model::mesh::getNodes(tags, coords, parametric, -1, -1, false, false);
+}
+
+// An entity's physical group (its first), else the entity's own tag, and the group's name.
+struct EntityGroup {
+  int tag = 0;
+  bool grouped = false;
+  std::string name;
+};
+EntityGroup entity_group(int dim, int entity) {
+  std::vector<int> physicals;
+  gmsh::model::getPhysicalGroupsForEntity(dim, entity, physicals);
+  EntityGroup g{physicals.empty() ? entity : physicals.front(), !physicals.empty(), ""};
+  if (g.grouped) gmsh::model::getPhysicalName(dim, g.tag, g.name);
+  return g;
+}
 }
 
 void write_msh(const std::string& path, const TriMesh& mesh,
@@ -72,28 +98,20 @@ void write_msh(const std::string& path, const TriMesh& mesh,
 }
 
 TriMesh read_msh_surface(const std::string& path, std::map<int, std::string>* label_names) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(fmt::format("{}: cannot open: no such file", path));
+  require_file(path);
   GmshSession session;
   TriMesh mesh;
   call_gmsh(path, [&] {
-    gmsh::open(path);
     std::vector<std::size_t> node_tags;
-    std::vector<double> coords, parametric;
-    gmsh::model::mesh::getNodes(node_tags, coords, parametric, -1, -1, true, false);
+    std::vector<double> coords;
+    open_with_nodes(path, node_tags, coords);
     std::unordered_map<std::size_t, int> index_of;  // Gmsh node tag -> our point index
     gmsh::vectorpair entities;
     gmsh::model::getEntities(entities, 2);
     for (const auto& [dim, entity] : entities) {
-      std::vector<int> physicals;
-      gmsh::model::getPhysicalGroupsForEntity(dim, entity, physicals);
-      const int label = physicals.empty() ? entity : physicals.front();
-      if (label_names && !physicals.empty()) {
-        std::string name;
-        gmsh::model::getPhysicalName(2, label, name);
-        if (!name.empty()) (*label_names)[label] = name;
-      }
+      const EntityGroup group = entity_group(dim, entity);
+      const int label = group.tag;
+      if (label_names && !group.name.empty()) (*label_names)[label] = group.name;
       std::vector<std::size_t> element_tags, element_nodes;
       gmsh::model::mesh::getElementsByType(kTriangle3, element_tags, element_nodes, entity);
       for (size_t e = 0; e < element_tags.size(); ++e) {
@@ -178,16 +196,13 @@ void write_msh(const std::string& path, const TetMesh& mesh) {
 }
 
 TetMesh read_msh_volume(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(fmt::format("{}: cannot open: no such file", path));
+  require_file(path);
   GmshSession session;
   TetMesh mesh;
   call_gmsh(path, [&] {
-    gmsh::open(path);
     std::vector<std::size_t> node_tags;
-    std::vector<double> coords, parametric;
-    gmsh::model::mesh::getNodes(node_tags, coords, parametric, -1, -1, false, false);
+    std::vector<double> coords;
+    open_with_nodes(path, node_tags, coords);
     std::unordered_map<std::size_t, int> index_of;
     for (size_t i = 0; i < node_tags.size(); ++i) {
       index_of.emplace(node_tags[i], static_cast<int>(i));
@@ -204,11 +219,10 @@ TetMesh read_msh_volume(const std::string& path) {
     gmsh::vectorpair entities;
     gmsh::model::getEntities(entities, 3);
     for (const auto& [dim, entity] : entities) {
-      std::vector<int> physicals;
-      gmsh::model::getPhysicalGroupsForEntity(dim, entity, physicals);
-      if (!physicals.empty()) {
-        mesh.volume_tag = physicals.front();
-        gmsh::model::getPhysicalName(3, physicals.front(), mesh.volume_name);
+      const EntityGroup group = entity_group(dim, entity);
+      if (group.grouped) {
+        mesh.volume_tag = group.tag;
+        mesh.volume_name = group.name;
       }
       std::vector<std::size_t> tags, nodes;
       gmsh::model::mesh::getElementsByType(kTetrahedron4, tags, nodes, entity);
@@ -224,12 +238,9 @@ TetMesh read_msh_volume(const std::string& path) {
     }
     gmsh::model::getEntities(entities, 2);
     for (const auto& [dim, entity] : entities) {
-      std::vector<int> physicals;
-      gmsh::model::getPhysicalGroupsForEntity(dim, entity, physicals);
-      const int tag = physicals.empty() ? entity : physicals.front();
-      std::string name;
-      if (!physicals.empty()) gmsh::model::getPhysicalName(2, tag, name);
-      mesh.tag_names[tag] = name.empty() ? fmt::format("tag_{}", tag) : name;
+      const EntityGroup group = entity_group(dim, entity);
+      const int tag = group.tag;
+      mesh.tag_names[tag] = group.name.empty() ? mesh::unnamed_tag(tag) : group.name;
       std::vector<std::size_t> tags, nodes;
       gmsh::model::mesh::getElementsByType(kTriangle3, tags, nodes, entity);
       for (size_t e = 0; e < tags.size(); ++e) {

@@ -539,7 +539,7 @@ TetMesh XmlSurfaceReader::read_volume() {
   }
 
   // Names: "<tag> <name>" strings, the volume's first (its tag may also be a boundary's: they
-  // are cells of another dimension); a tag without one is named by its number.
+  // are cells of another dimension); a tag without one is named unnamed_tag().
   if (vtkXMLDataElement* data = dataset_->FindNestedElementWithName("FieldData"))
     for (int i = 0; i < data->GetNumberOfNestedElements(); ++i) {
       vtkXMLDataElement* array = data->GetNestedElement(i);
@@ -555,8 +555,7 @@ TetMesh XmlSurfaceReader::read_volume() {
         first = false;
       }
     }
-  for (int t : mesh.boundary_tags)
-    if (!mesh.tag_names.count(t)) mesh.tag_names[t] = std::to_string(t);
+  mesh.tag_names = mesh::boundary_tag_names(mesh);
   volume_ = nullptr;
   return mesh;
 }

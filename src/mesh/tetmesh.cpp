@@ -66,6 +66,15 @@ double scaled_jacobian(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& 
   return largest > 0 ? std::numbers::sqrt2 * volume6 / largest : 0.0;
 }
 
+std::string unnamed_tag(int tag) { return "tag_" + std::to_string(tag); }
+
+std::map<int, std::string> boundary_tag_names(const TetMesh& m) {
+  std::map<int, std::string> names = m.tag_names;
+  for (int tag : m.boundary_tags)
+    if (!names.count(tag)) names[tag] = unnamed_tag(tag);
+  return names;
+}
+
 Triangle canonical_rotation(const Triangle& f) {
   Triangle out = f;
   std::rotate(out.begin(), std::min_element(out.begin(), out.end()), out.end());

@@ -58,6 +58,17 @@ inline double tet_volume6(const TetMesh& m, const Tet& t) {
 // prisms and hexahedra into tetrahedra", IMR 1999). Oriented positively for a valid prism.
 std::array<Tet, 3> split_prism(const Prism& p);
 
+// The gradients of the four barycentric (P1 shape) functions of tetrahedron (a, b, c, d), and
+// six times its signed volume in `volume6`; the gradients are meaningless when it is 0.
+inline std::array<Vec3, 4> barycentric_gradients(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d,
+                                                 double& volume6) {
+  const Vec3 d1 = b - a, d2 = c - a, d3 = d - a;
+  volume6 = d1.cross(d2).dot(d3);
+  // Rows of the inverse Jacobian are the gradients of the functions of b, c and d.
+  const Vec3 g1 = d2.cross(d3) / volume6, g2 = d3.cross(d1) / volume6, g3 = d1.cross(d2) / volume6;
+  return {-(g1 + g2 + g3), g1, g2, g3};
+}
+
 // The six dihedral angles of a tetrahedron, in radians.
 std::array<double, 6> dihedral_angles(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 
@@ -65,6 +76,11 @@ std::array<double, 6> dihedral_angles(const Vec3& a, const Vec3& b, const Vec3& 
 // the three edge lengths at a corner, times sqrt(2); 1 for the regular tetrahedron, <= 0 when
 // inverted or flat.
 double scaled_jacobian(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+// The name of a boundary tag that has none: "tag_<tag>" (every reader and the solver use it).
+std::string unnamed_tag(int tag);
+// Every boundary tag's name: `tag_names`, with unnamed_tag() for the tags it lacks.
+std::map<int, std::string> boundary_tag_names(const TetMesh& m);
 
 // A triangle's corners rotated so that the least comes first (its orientation kept): one
 // spelling per oriented triangle, for comparing faces.

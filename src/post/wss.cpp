@@ -61,11 +61,8 @@ std::vector<Vec3> wall_shear_stress(const WallSurface& wall, const std::vector<T
     if (!(area > 0.0)) continue;
     const Vec3 n = -area2.normalized();  // into the fluid
     const Tet& t = tetrahedra[wall.tet[f]];
-    const Vec3& o = points[t[0]];
-    const Vec3 d1 = points[t[1]] - o, d2 = points[t[2]] - o, d3 = points[t[3]] - o;
-    const double v6 = d1.cross(d2).dot(d3);
-    const Vec3 g1 = d2.cross(d3) / v6, g2 = d3.cross(d1) / v6, g3 = d1.cross(d2) / v6;
-    const Vec3 g[4] = {-(g1 + g2 + g3), g1, g2, g3};
+    double v6 = 0.0;
+    const std::array<Vec3, 4> g = mesh::barycentric_gradients(points[t[0]], points[t[1]], points[t[2]], points[t[3]], v6);
     Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();  // grad(i, j) = d u_i / d x_j
     for (int k = 0; k < 4; ++k) grad += velocity[t[k]] * g[k].transpose();
     const Vec3 traction = viscosity * (grad + grad.transpose()) * n;

@@ -377,23 +377,37 @@ std::string read_text(const std::string& path) {
 
 // The pulsatile example case, run for three steps on a small pipe: every output written and
 // named in the collections; a case naming a tag the mesh lacks stops before any work.
-TEST(Cli, SimulateRunsTheExampleCase) {
-  test::TemporaryFolder tmp;
-  ASSERT_EQ(run({"synth", "cylinder", "--radius", "2", "--length", "8", "--resolution", "0.5", "-o", tmp.path("p.stl")}).code, 0);
-  // As VTU with the layer's prisms kept: the solver cuts them itself.
-  ASSERT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("pipe.vtu"), "--keep-prisms", "-q"}).code, 0);
-  std::string text = read_text(std::string(VESSELMESH_EXAMPLES_DIR) + "/pipe_pulsatile.toml");
-  const auto replace = [&](const std::string& from, const std::string& to) {
+// examples/pipe_pulsatile.toml for a small pipe meshed in a test's folder: the mesh `mesh_file`
+// (written there by `volume` with `volume_options`), run to `end` s, the waveform found.
+struct ExampleCase {
+  std::string text;
+
+  ExampleCase(const test::TemporaryFolder& tmp, const std::string& mesh_file, std::vector<std::string> volume_options,
+              const std::string& end) {
+    EXPECT_EQ(run({"synth", "cylinder", "--radius", "2", "--length", "8", "--resolution", "0.5", "-o",
+                   tmp.path("p.stl")}).code, 0);
+    std::vector<std::string> volume = {"volume", tmp.path("p.stl"), "-o", tmp.path(mesh_file), "-q"};
+    volume.insert(volume.end(), volume_options.begin(), volume_options.end());
+    EXPECT_EQ(run(volume).code, 0);
+    text = read_text(std::string(VESSELMESH_EXAMPLES_DIR) + "/pipe_pulsatile.toml");
+    replace("../build/pipe.msh", mesh_file);
+    replace("cycles = 2", "end = " + end);
+    replace("period = 0.8", "");
+    replace("waveform = \"pulse.csv\"", "waveform = \"" + std::string(VESSELMESH_EXAMPLES_DIR) + "/pulse.csv\"");
+  }
+  void replace(const std::string& from, const std::string& to) {
     const size_t at = text.find(from);
     ASSERT_NE(at, std::string::npos) << from;
     text.replace(at, from.size(), to);
-  };
-  replace("../build/pipe.msh", "pipe.vtu");
-  replace("cycles = 2", "end = 0.015");
-  replace("period = 0.8", "");
-  replace("save_every = 10", "save_every = 2");
-  replace("waveform = \"pulse.csv\"", "waveform = \"" + std::string(VESSELMESH_EXAMPLES_DIR) + "/pulse.csv\"");
-  test::write_bytes(tmp.path("case.toml"), text);
+  }
+};
+
+TEST(Cli, SimulateRunsTheExampleCase) {
+  test::TemporaryFolder tmp;
+  // As VTU with the layer's prisms kept: the solver cuts them itself.
+  ExampleCase example(tmp, "pipe.vtu", {"--keep-prisms"}, "0.015");
+  example.replace("save_every = 10", "save_every = 2");
+  test::write_bytes(tmp.path("case.toml"), example.text);
 
   const RunResult r = run({"simulate", tmp.path("case.toml"), "-o", tmp.path("out"), "--json"});
   ASSERT_EQ(r.code, 0) << r.err;
@@ -423,8 +437,8 @@ TEST(Cli, SimulateRunsTheExampleCase) {
   EXPECT_TRUE(has_wss && has_magnitude);
 
   // A tag the mesh does not have: exit 2, the tag named, nothing written.
-  replace("tag = \"outlet_1\"", "tag = \"outlet_9\"");
-  test::write_bytes(tmp.path("bad.toml"), text);
+  example.replace("tag = \"outlet_1\"", "tag = \"outlet_9\"");
+  test::write_bytes(tmp.path("bad.toml"), example.text);
   const RunResult bad = run({"simulate", tmp.path("bad.toml"), "-o", tmp.path("bad-out")});
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(last_line(bad.err).find("\"outlet_9\" is not in the mesh"), std::string::npos) << bad.err;
@@ -435,16 +449,9 @@ TEST(Cli, SimulateRunsTheExampleCase) {
 TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
   if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun is not installed";
   test::TemporaryFolder tmp;
-  ASSERT_EQ(run({"synth", "cylinder", "--radius", "2", "--length", "8", "--resolution", "0.5", "-o", tmp.path("p.stl")}).code, 0);
-  ASSERT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("pipe.msh"), "-q"}).code, 0);
-  std::string text = read_text(std::string(VESSELMESH_EXAMPLES_DIR) + "/pipe_pulsatile.toml");
-  const auto replace = [&](const std::string& from, const std::string& to) { text.replace(text.find(from), from.size(), to); };
-  replace("../build/pipe.msh", "pipe.msh");
-  replace("cycles = 2", "end = 0.02");
-  replace("period = 0.8", "");
-  replace("waveform = \"pulse.csv\"", "waveform = \"" + std::string(VESSELMESH_EXAMPLES_DIR) + "/pulse.csv\"");
-  replace("petsc_options = \"\"", "petsc_options = \"-ksp_rtol 1e-10\"");
-  test::write_bytes(tmp.path("case.toml"), text);
+  ExampleCase example(tmp, "pipe.msh", {}, "0.02");
+  example.replace("petsc_options = \"\"", "petsc_options = \"-ksp_rtol 1e-10\"");
+  test::write_bytes(tmp.path("case.toml"), example.text);
   ASSERT_EQ(run({"simulate", tmp.path("case.toml"), "-o", tmp.path("one"), "-q"}).code, 0);
   const std::string command = "mpirun --allow-run-as-root --oversubscribe -np 2 " + quote(VESSELMESH_PROGRAM) +
                               " simulate " + quote(tmp.path("case.toml")) + " -o " + quote(tmp.path("two")) +

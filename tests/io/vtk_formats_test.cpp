@@ -179,7 +179,7 @@ TEST(VtuVolume, ReadsBackWhatWriteVtuWrote) {
   EXPECT_EQ(back.prisms, m.prisms);
   EXPECT_EQ(back.boundary, m.boundary);
   EXPECT_EQ(back.boundary_tags, m.boundary_tags);
-  EXPECT_EQ(back.tag_names, (std::map<int, std::string>{{2, "wall"}, {3, "inlet"}, {7, "7"}}));
+  EXPECT_EQ(back.tag_names, (std::map<int, std::string>{{2, "wall"}, {3, "inlet"}, {7, "tag_7"}}));
   EXPECT_EQ(back.volume_tag, 2);
   EXPECT_EQ(back.volume_name, "lumen");
   EXPECT_EQ(back.tet_layer, m.tet_layer);
