@@ -14,25 +14,6 @@
 namespace vesselmesh::cli {
 namespace {
 
-Vec3 parse_point(const std::string& text, const char* option) {
-  std::vector<double> v;
-  size_t start = 0;
-  while (start <= text.size()) {
-    const size_t comma = std::min(text.find(',', start), text.size());
-    try {
-      size_t used = 0;
-      const std::string part = text.substr(start, comma - start);
-      v.push_back(std::stod(part, &used));
-      if (used != part.size()) throw std::invalid_argument(part);
-    } catch (const std::exception&) {
-      throw OptionError(fmt::format("{} '{}' is not a point: give x,y,z in the file's unit", option, text));
-    }
-    start = comma + 1;
-  }
-  if (v.size() != 3) throw OptionError(fmt::format("{} '{}' is not a point: give x,y,z in the file's unit", option, text));
-  return Vec3(v[0], v[1], v[2]);
-}
-
 Json branch_json(const centerline::Branch& b) {
   double mean = 0.0;
   for (double r : b.radius) mean += r;

@@ -95,4 +95,26 @@ int run_action(const Action& action, const std::string& command) {
   }
 }
 
+Vec3 parse_point(const std::string& text, const char* option) {
+  std::vector<double> v;
+  size_t start = 0;
+  const auto fail = [&]() {
+    return OptionError(fmt::format("{} '{}' is not a point: give x,y,z in the file's unit", option, text));
+  };
+  while (start <= text.size()) {
+    const size_t comma = std::min(text.find(',', start), text.size());
+    try {
+      size_t used = 0;
+      const std::string part = text.substr(start, comma - start);
+      v.push_back(std::stod(part, &used));
+      if (used != part.size() || !std::isfinite(v.back())) throw std::invalid_argument(part);
+    } catch (const std::exception&) {
+      throw fail();
+    }
+    start = comma + 1;
+  }
+  if (v.size() != 3) throw fail();
+  return Vec3(v[0], v[1], v[2]);
+}
+
 }  // namespace vesselmesh::cli

@@ -45,6 +45,9 @@ Json to_json(const Vec3& v);
 // Rounds to `digits` significant digits so that JSON stays readable.
 double round_to(double value, int digits = 7);
 
+// "x,y,z" as a point (or a direction); OptionError naming `option` otherwise.
+Vec3 parse_point(const std::string& text, const char* option);
+
 // Prints JSON to stdout (pretty, one document).
 void print_json(const Json& json);
 

@@ -192,10 +192,11 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
     if (!time["dt"]) r.fail("time.dt", "missing: an unsteady case needs the time step in s");
     c.dt = r.number(time["dt"], "time.dt", c.dt);
     if (time["end"] && time["cycles"]) r.fail("time", "give `end` or `cycles` (with `period`), not both");
+    if (time["period"]) c.period = r.number(time["period"], "time.period", 1.0);
     if (time["cycles"]) {
       const double cycles = r.number(time["cycles"], "time.cycles", 1.0);
       if (!time["period"]) r.fail("time.period", "missing: `cycles` needs the period in s");
-      c.end = cycles * r.number(time["period"], "time.period", 1.0);
+      c.end = cycles * c.period;
     } else {
       if (!time["end"]) r.fail("time.end", "missing: give the end time in s (or cycles and period)");
       c.end = r.number(time["end"], "time.end", c.end);

@@ -5,7 +5,8 @@
 //   mesh = "volume.msh"        # from `vesselmesh volume`; relative to the case file
 //   length_unit = "mm"         # the mesh's unit; the solver works in SI
 //   [fluid]    density = 1060.0 (kg/m3), viscosity = 0.0035 (Pa s)
-//   [time]     steady = false; dt (s); end (s) or cycles with period (s); save_every (steps)
+//   [time]     steady = false; dt (s); end (s) or cycles with period (s); save_every (steps);
+//              period may come with end too: the wall shear stress indices cover the last period
 //   [[boundary]] tag = "inlet"; type = "velocity" | "traction" | "resistance" | "wall";
 //              profile = "parabolic" | "plug" | "womersley"; flow = 5.0 (mL/s) or waveform = "inlet.csv"
 //              (time s, flow mL/s, repeated with its period); resistance = R (Pa s/m3)
@@ -61,6 +62,7 @@ struct FlowCase {
   double density = 1060.0, viscosity = 0.0035;
   bool steady = false;
   double dt = 1e-3, end = 1.0;
+  double period = 0.0;  // s; 0 when not given. The hemodynamic indices cover the last period.
   int save_every = 10;
   int picard = 0;
   double steady_tolerance = 1e-6;

@@ -6,6 +6,7 @@
 #include "io/msh.h"
 #include "io/vtk_formats.h"
 #include "mesh/error.h"
+#include "post/indices.h"
 #include "post/wss.h"
 
 #include <fmt/format.h>
@@ -96,6 +97,10 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     j["dofs"] = summary.dofs;
     j["ranks"] = ranks;
     j["steady"] = fc.steady;
+    if (fc.period > 0.0) j["period"] = fc.period;
+    if (summary.indices_end > summary.indices_start)
+      j["indices"] = {{"file", "indices.vtp"}, {"start_s", summary.indices_start}, {"end_s", summary.indices_end},
+                      {"units", {{"tawss", "Pa"}, {"osi", "1"}, {"rrt", "1/Pa"}, {"twssg", "Pa/s"}}}};
     j["steps"] = summary.steps;
     j["saved"] = summary.saved;
     j["linear_iterations"] = summary.linear_iterations;
@@ -107,6 +112,22 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     j["solver"] = summary.solver;
     j["petsc_options"] = fc.petsc_options;
     io::write_text(output_dir + "/summary.json", j.dump(2) + "\n");
+  };
+
+  // Hemodynamic indices over the last period (the whole run without one), from every step.
+  post::WssIndexAccumulator indices;
+  const double window_start = fc.period > 0.0 && fc.period < fc.end ? fc.end - fc.period : 0.0;
+  const auto write_indices = [&]() {
+    if (!writer || indices.samples() < 2) return;
+    const post::WssIndices r = indices.result();
+    io::write_vtp(output_dir + "/indices.vtp", wall.mesh,
+                  {Field::scalar("tawss", r.tawss), Field::scalar("osi", r.osi), Field::scalar("rrt", r.rrt),
+                   Field::scalar("twssg", r.twssg)});
+    summary.indices_start = r.start;
+    summary.indices_end = r.end;
+    reporter.info(fmt::format("indices.vtp: tawss (Pa), osi, rrt (1/Pa), twssg (Pa/s) over t = {:g} to {:g} s, {} "
+                              "samples",
+                              r.start, r.end, r.samples));
   };
 
   const auto save = [&](double time) {
@@ -157,6 +178,8 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
         log_step(r);
         if (k == 0) summary.solver = ns.solver_description();
         if (r.step % fc.save_every == 0 || k + 1 == steps) save(r.time);
+        if (writer && r.time >= window_start - 0.5 * fc.dt)
+          indices.add(r.time, post::wall_shear_stress(wall, all, si, ns.velocity(), fc.viscosity));
         reporter.progress("time steps", double(k + 1) / steps);
       }
     }
@@ -167,6 +190,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     write_summary();
     throw;
   }
+  write_indices();
   summary.status = "completed";
   summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const double solving = std::chrono::duration<double>(Clock::now() - solve_start).count();

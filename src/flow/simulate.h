@@ -5,6 +5,9 @@
 //   fluid.pvd + fluid_NNNNNN.vtu   the volume per saved step: point data velocity (m/s), pressure (Pa)
 //   wall.pvd  + wall_NNNNNN.vtp    the wall per saved step: point data wss (Pa, vector),
 //                                  wss_magnitude (Pa); cell data tag
+//   indices.vtp                    unsteady runs: tawss (Pa), osi, rrt (1/Pa), twssg (Pa/s) per
+//                                  wall point over the last period (the whole run without one),
+//                                  from every time step (post/indices.h)
 //   log.csv                        per step: time, flux (m3/s, out of the domain) and mean
 //                                  pressure (Pa) per boundary, linear iterations, CFL, seconds
 //   summary.json                   sizes, steps, times, the SI scale applied, units, status
@@ -28,6 +31,7 @@ struct SimulationSummary {
   int steps = 0, saved = 0, linear_iterations = 0;
   double seconds = 0.0, seconds_per_step = 0.0, setup_seconds = 0.0;
   double length_scale = 1e-3;
+  double indices_start = 0.0, indices_end = 0.0;  // s; the indices' window (equal: none written)
   std::string solver;
 };
 

@@ -1,0 +1,40 @@
+// Hemodynamic indices of a wall shear stress history, as VaMPy's documentation defines them,
+// over the window [t0, t1] the samples span (T = t1 - t0), per wall point:
+//   TAWSS = 1/T int |tau| dt                            (Pa)
+//   OSI   = 1/2 (1 - |int tau dt| / int |tau| dt)       (-, 0 to 1/2)
+//   RRT   = 1 / ((1 - 2 OSI) TAWSS) = T / |int tau dt|  (1/Pa)
+//   TWSSG = 1/T int |d tau / dt| dt                     (Pa/s)
+// The integrals are by the trapezoidal rule over the samples given (every time step when the
+// solver accumulates, the saved frames when `vesselmesh wss` does); d tau/dt is the difference
+// of successive samples. Where tau is zero throughout, OSI is 0 and RRT is NaN (no residence
+// time can be told).
+#pragma once
+
+#include "mesh/trimesh.h"
+
+#include <vector>
+
+namespace vesselmesh::post {
+
+struct WssIndices {
+  double start = 0.0, end = 0.0;  // s
+  int samples = 0;
+  std::vector<double> tawss, osi, rrt, twssg;
+};
+
+class WssIndexAccumulator {
+ public:
+  // Samples come in increasing time; each has one vector per wall point (the same count).
+  void add(double time, const std::vector<Vec3>& tau);
+  int samples() const { return samples_; }
+  // Throws InputError with fewer than two samples (no time span).
+  WssIndices result() const;
+
+ private:
+  int samples_ = 0;
+  double start_ = 0.0, last_time_ = 0.0;
+  std::vector<Vec3> last_, integral_;
+  std::vector<double> magnitude_integral_, change_;
+};
+
+}  // namespace vesselmesh::post

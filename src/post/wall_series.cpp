@@ -1,0 +1,92 @@
+#include "post/wall_series.h"
+
+#include "io/atomic_file.h"
+#include "io/vtk_formats.h"
+#include "mesh/error.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <regex>
+
+namespace vesselmesh::post {
+
+WallSeries read_wall_series(const std::string& directory) {
+  WallSeries series;
+  series.directory = directory;
+  const std::string pvd = directory + "/wall.pvd";
+  if (!std::filesystem::exists(pvd))
+    throw InputError(fmt::format("{}: no such file; give the output folder of 'vesselmesh simulate'", pvd));
+  const std::string text = io::read_file(pvd);
+  const std::regex dataset(R"re(<DataSet\s[^>]*timestep="([^"]*)"[^>]*file="([^"]*)")re");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), dataset); it != std::sregex_iterator(); ++it) {
+    WallFrame frame;
+    try {
+      size_t used = 0;
+      frame.time = std::stod((*it)[1].str(), &used);
+      if (used != static_cast<size_t>((*it)[1].length())) throw std::invalid_argument("trailing");
+    } catch (const std::exception&) {
+      throw InputError(fmt::format("{}: timestep \"{}\" is not a number", pvd, (*it)[1].str()));
+    }
+    frame.file = directory + "/" + (*it)[2].str();
+    if (!series.frames.empty() && !(frame.time > series.frames.back().time))
+      throw InputError(fmt::format("{}: timesteps not increasing ({:g} after {:g})", pvd, frame.time,
+                                   series.frames.back().time));
+    series.frames.push_back(frame);
+  }
+  if (series.frames.empty()) throw InputError(fmt::format("{}: lists no wall results", pvd));
+  const std::string summary = directory + "/summary.json";
+  if (std::filesystem::exists(summary)) {
+    try {
+      const nlohmann::json j = nlohmann::json::parse(io::read_file(summary));
+      series.length_unit = j.at("units").at("points").get<std::string>();
+      series.length_scale = j.at("units").at("length_scale_m").get<double>();
+      if (j.contains("period")) series.period = j.at("period").get<double>();
+    } catch (const nlohmann::json::exception& e) {
+      throw InputError(fmt::format("{}: {}", summary, e.what()));
+    }
+  }
+  return series;
+}
+
+WallField read_wall_frame(const WallFrame& frame) {
+  io::SurfaceData data = io::read_vtk_surface(frame.file, io::VtkFormat::vtp);
+  WallField field;
+  field.time = frame.time;
+  for (const Field& f : data.point_data)
+    if (f.name == "wss" && f.components == 3) {
+      field.wss.resize(data.mesh.points.size());
+      for (size_t i = 0; i < field.wss.size(); ++i)
+        field.wss[i] = Vec3(f.values[3 * i], f.values[3 * i + 1], f.values[3 * i + 2]);
+    }
+  if (field.wss.empty())
+    throw InputError(fmt::format("{}: has no point data `wss` (3 components); is it a wall file of "
+                                 "'vesselmesh simulate'?",
+                                 frame.file));
+  field.mesh = std::move(data.mesh);
+  return field;
+}
+
+WallField wall_at_time(const WallSeries& series, double time) {
+  const std::vector<WallFrame>& frames = series.frames;
+  const double tolerance = 1e-9 * std::max(1.0, std::abs(frames.back().time));
+  if (time < frames.front().time - tolerance || time > frames.back().time + tolerance)
+    throw InputError(fmt::format("t = {:g} s is outside the saved results ({:g} to {:g} s, {} frames in {})", time,
+                                 frames.front().time, frames.back().time, frames.size(), series.directory));
+  size_t k = 0;
+  while (k + 1 < frames.size() && frames[k + 1].time < time - tolerance) ++k;
+  if (std::abs(frames[k].time - time) <= tolerance || k + 1 == frames.size()) return read_wall_frame(frames[k]);
+  if (std::abs(frames[k + 1].time - time) <= tolerance) return read_wall_frame(frames[k + 1]);
+  WallField a = read_wall_frame(frames[k]);
+  const WallField b = read_wall_frame(frames[k + 1]);
+  if (b.wss.size() != a.wss.size())
+    throw InputError(fmt::format("{} and {}: different walls ({} and {} points)", frames[k].file, frames[k + 1].file,
+                                 a.wss.size(), b.wss.size()));
+  const double t = (time - a.time) / (b.time - a.time);
+  for (size_t i = 0; i < a.wss.size(); ++i) a.wss[i] += t * (b.wss[i] - a.wss[i]);
+  a.time = time;
+  return a;
+}
+
+}  // namespace vesselmesh::post

@@ -1,0 +1,41 @@
+// The wall results of `vesselmesh simulate` read back: the frames listed by DIR/wall.pvd
+// (time, VTP file with point data `wss` in Pa), the mesh's length unit from DIR/summary.json,
+// and the wall shear stress at any time within the saved span (linear between frames).
+#pragma once
+
+#include "mesh/trimesh.h"
+
+#include <string>
+#include <vector>
+
+namespace vesselmesh::post {
+
+struct WallFrame {
+  double time = 0.0;  // s
+  std::string file;   // path of the VTP
+};
+
+struct WallSeries {
+  std::string directory;
+  std::vector<WallFrame> frames;  // increasing time
+  std::string length_unit = "mm";
+  double length_scale = 1e-3;  // metres per unit
+  double period = 0.0;         // s, from the summary; 0 when the case gave none
+};
+
+// Throws InputError naming the file when the folder has no readable wall.pvd.
+WallSeries read_wall_series(const std::string& directory);
+
+struct WallField {
+  TriMesh mesh;            // the wall, in the mesh's length unit
+  std::vector<Vec3> wss;   // Pa, per point
+  double time = 0.0;
+};
+
+WallField read_wall_frame(const WallFrame& frame);
+
+// Linear in time between the two saved frames around `time`; InputError when `time` lies
+// outside the saved span (the message gives it).
+WallField wall_at_time(const WallSeries& series, double time);
+
+}  // namespace vesselmesh::post

@@ -1,0 +1,97 @@
+#include "post/indices.h"
+
+#include "mesh/error.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace vesselmesh::post {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// One period T sampled at n + 1 times (both ends), tau(t) given per point.
+template <class F>
+WssIndices over_one_period(double T, int n, F tau) {
+  WssIndexAccumulator a;
+  for (int k = 0; k <= n; ++k) {
+    const double t = T * k / n;
+    a.add(t, tau(t));
+  }
+  return a.result();
+}
+
+TEST(WssIndices, SteadyForwardShear) {
+  // tau = 2 e_z + 0.5 sin(wt) e_z: never reverses. TAWSS = 2, OSI = 0, RRT = 1/2,
+  // TWSSG = (1/T) int |0.5 w cos wt| dt = 4 * 0.5 / T.
+  const double T = 0.8, w = 2 * kPi / T;
+  const WssIndices r = over_one_period(T, 4000, [&](double t) {
+    return std::vector<Vec3>{Vec3(0, 0, 2.0 + 0.5 * std::sin(w * t))};
+  });
+  EXPECT_EQ(r.samples, 4001);
+  EXPECT_DOUBLE_EQ(r.start, 0.0);
+  EXPECT_NEAR(r.end, T, 1e-12);
+  EXPECT_NEAR(r.tawss[0], 2.0, 1e-6);
+  EXPECT_NEAR(r.osi[0], 0.0, 1e-9);
+  EXPECT_NEAR(r.rrt[0], 0.5, 1e-6);
+  EXPECT_NEAR(r.twssg[0], 2.0 / T, 1e-5);
+}
+
+TEST(WssIndices, PurelyOscillatingShear) {
+  // tau = sin(wt) e_x: TAWSS = 2/pi, the mean vector is zero, OSI = 1/2, RRT undefined (NaN).
+  const double T = 1.0, w = 2 * kPi / T;
+  const WssIndices r = over_one_period(T, 2000, [&](double t) {
+    return std::vector<Vec3>{Vec3(std::sin(w * t), 0, 0), Vec3(0.3, 0, 0)};
+  });
+  EXPECT_NEAR(r.tawss[0], 2.0 / kPi, 1e-6);
+  EXPECT_NEAR(r.osi[0], 0.5, 1e-9);
+  EXPECT_TRUE(std::isnan(r.rrt[0]));
+  EXPECT_NEAR(r.twssg[0], 4.0 / T, 1e-4);
+  // The second point is constant: TAWSS = 0.3, OSI = 0, RRT = 1/0.3, TWSSG = 0.
+  EXPECT_NEAR(r.tawss[1], 0.3, 1e-12);
+  EXPECT_NEAR(r.osi[1], 0.0, 1e-12);
+  EXPECT_NEAR(r.rrt[1], 1.0 / 0.3, 1e-9);
+  EXPECT_NEAR(r.twssg[1], 0.0, 1e-12);
+}
+
+TEST(WssIndices, RotatingShearHasHalfOsiAndConstantMagnitude) {
+  // A vector of length 1.5 turning once: TAWSS = 1.5, OSI = 1/2, |d tau/dt| = 1.5 w.
+  const double T = 0.5, w = 2 * kPi / T;
+  const WssIndices r = over_one_period(T, 3000, [&](double t) {
+    return std::vector<Vec3>{1.5 * Vec3(std::cos(w * t), std::sin(w * t), 0)};
+  });
+  EXPECT_NEAR(r.tawss[0], 1.5, 1e-9);
+  EXPECT_NEAR(r.osi[0], 0.5, 1e-6);
+  EXPECT_NEAR(r.twssg[0], 1.5 * w, 1e-3 * 1.5 * w);
+}
+
+TEST(WssIndices, PartlyReversingShearMatchesItsIntegrals) {
+  // tau = (0.2 + sin wt) e_z reverses for part of the cycle: with s0 = asin(0.2) it is negative
+  // for wt in (pi + s0, 2 pi - s0), and int_0^{2 pi} |a + sin x| dx = 4 a s0 + 4 cos s0.
+  const double T = 1.0, w = 2 * kPi / T, a = 0.2;
+  const double s0 = std::asin(a);
+  const double magnitude = (4.0 * a * s0 + 4.0 * std::cos(s0)) / (2 * kPi);  // the mean of |tau|
+  const WssIndices r = over_one_period(T, 20000, [&](double t) {
+    return std::vector<Vec3>{Vec3(0, 0, a + std::sin(w * t))};
+  });
+  EXPECT_NEAR(r.tawss[0], magnitude, 1e-6);
+  EXPECT_NEAR(r.osi[0], 0.5 * (1.0 - a / magnitude), 1e-6);
+  EXPECT_NEAR(r.rrt[0], 1.0 / a, 1e-5);
+}
+
+TEST(WssIndices, RefusesTooFewOrDisorderedSamples) {
+  WssIndexAccumulator a;
+  EXPECT_THROW(a.result(), InputError);
+  a.add(0.1, {Vec3(1, 0, 0)});
+  EXPECT_THROW(a.result(), InputError);
+  EXPECT_THROW(a.add(0.1, {Vec3(1, 0, 0)}), InputError);            // not later
+  EXPECT_THROW(a.add(0.2, {Vec3(1, 0, 0), Vec3(1, 0, 0)}), InputError);  // another point count
+  a.add(0.2, {Vec3(1, 0, 0)});
+  EXPECT_EQ(a.samples(), 2);
+  EXPECT_NEAR(a.result().tawss[0], 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace vesselmesh::post
