@@ -2,10 +2,8 @@
 // points, at a chosen time; hemodynamic indices over a chosen window (post/).
 #include "commands.h"
 
-#include "centerline/extract.h"
 #include "io/atomic_file.h"
 #include "io/vtk_formats.h"
-#include "mesh/clean.h"
 #include "mesh/error.h"
 #include "post/indices.h"
 #include "post/ring.h"
@@ -43,19 +41,14 @@ std::string checked_name(const std::string& name, const std::string& text, const
 }
 
 // NAME:x,y,z:nx,ny,nz[:rx,ry,rz], or NAME:x,y,z for the plane normal to the centerline there.
-struct RingRequest {
-  post::RingSpec spec;
-  bool on_centerline = false;
-};
-
-RingRequest parse_ring(const std::string& text) {
+post::RingRequest parse_ring(const std::string& text) {
   const std::vector<std::string> parts = split(text, ':');
   if (parts.size() < 2 || parts.size() > 4)
     throw OptionError(fmt::format("--ring '{}': give NAME:x,y,z:nx,ny,nz (a point and the plane's normal), "
                                   "NAME:x,y,z:nx,ny,nz:rx,ry,rz (and where angle 0 points), or NAME:x,y,z (the "
                                   "plane normal to the centerline nearest the point)",
                                   text));
-  RingRequest r;
+  post::RingRequest r;
   r.spec.name = checked_name(parts[0], text, "--ring");
   r.spec.point = parse_point(parts[1], "--ring");
   r.on_centerline = parts.size() == 2;
@@ -177,7 +170,7 @@ Command add_wss_command(CLI::App& parent) {
   add_common_options(*app, o->common);
   return {app, [o] {
             TerminalReporter reporter(o->common.quiet);
-            std::vector<RingRequest> rings;
+            std::vector<post::RingRequest> rings;
             for (const std::string& r : o->rings) rings.push_back(parse_ring(r));
             std::vector<post::PointSpec> points;
             for (const std::string& p : o->points) points.push_back(parse_probe(p));
@@ -196,22 +189,11 @@ Command add_wss_command(CLI::App& parent) {
             io::write_vtp(out + "/wall_at_time.vtp", field.mesh,
                           {Field::vector("wss", field.wss), Field::scalar("wss_magnitude", magnitude)});
 
-            std::optional<centerline::Centerlines> centerlines;
             Json ring_list = Json::array();
             std::vector<std::vector<Vec3>> lines;
             std::vector<double> line_magnitude;
             std::vector<Vec3> line_wss;
-            for (const RingRequest& request : rings) {
-              post::RingSpec spec = request.spec;
-              if (request.on_centerline) {
-                if (!centerlines) {
-                  reporter.info("centerlines of the wall, for rings placed on them");
-                  TriMesh surface = field.mesh;
-                  mesh::clean(surface);
-                  centerlines = centerline::extract(surface, {}, reporter);
-                }
-                spec = post::centerline_ring(*centerlines, spec.name, spec.point);
-              }
+            for (const post::RingSpec& spec : post::place_rings(field.mesh, rings, reporter)) {
               const post::Ring ring = post::cut_ring(field.mesh, field.wss, spec);
               write_ring(out, ring, time, unit);
               const post::RingSample& least = ring.samples[ring.minimum];

@@ -1,11 +1,11 @@
 #include "flow/case.h"
 
 #include "io/atomic_file.h"
+#include "io/toml_reader.h"
 #include "io/units.h"
 #include "mesh/error.h"
 
 #include <fmt/format.h>
-#include <toml++/toml.h>
 
 #include <algorithm>
 #include <cmath>
@@ -82,89 +82,17 @@ std::string to_string(BoundaryType type) {
   return "?";
 }
 
-namespace {
-
-using View = toml::node_view<const toml::node>;
-
-struct Reader {
-  std::string path;
-
-  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-    throw InputError(fmt::format("{}: {}: {}", path, key, what));
-  }
-
-  double number(const View& node, const std::string& key, double fallback,
-                bool positive = true) const {
-    if (!node) return fallback;
-    const auto value = node.value<double>();
-    if (!value || !std::isfinite(*value)) fail(key, "expected a number");
-    if (positive && *value <= 0.0) fail(key, fmt::format("must be positive (found {})", *value));
-    return *value;
-  }
-
-  int integer(const View& node, const std::string& key, int fallback,
-              int least) const {
-    if (!node) return fallback;
-    const auto value = node.value<int64_t>();
-    if (!value || !node.is_integer()) fail(key, "expected an integer");
-    if (*value < least || *value > 1000000000) fail(key, fmt::format("must be at least {} (found {})", least, *value));
-    return static_cast<int>(*value);
-  }
-
-  std::string text(const View& node, const std::string& key,
-                   const std::string& fallback) const {
-    if (!node) return fallback;
-    const auto value = node.value<std::string>();
-    if (!value || !node.is_string()) fail(key, "expected a string");
-    return *value;
-  }
-
-  bool flag(const View& node, const std::string& key, bool fallback) const {
-    if (!node) return fallback;
-    const auto value = node.value<bool>();
-    if (!value || !node.is_boolean()) fail(key, "expected true or false");
-    return *value;
-  }
-
-  void known_keys(const toml::table& table, const std::string& where, std::initializer_list<const char*> keys) const {
-    for (const auto& [key, value] : table) {
-      (void)value;
-      const std::string name(key.str());
-      if (std::none_of(keys.begin(), keys.end(), [&](const char* k) { return name == k; })) {
-        std::string list;
-        for (const char* k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
-        fail(where.empty() ? name : where + "." + name, fmt::format("unknown key (known here: {})", list));
-      }
-    }
-  }
-};
-
-std::string resolve(const std::string& base, const std::string& file) {
-  namespace fs = std::filesystem;
-  const fs::path p(file);
-  if (p.is_absolute()) return file;
-  return (fs::path(base).parent_path() / p).lexically_normal().string();
-}
-
-}  // namespace
-
 FlowCase parse_case(const std::string& text, const std::string& path) {
-  toml::table parsed;
-  try {
-    parsed = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    throw InputError(fmt::format("{}:{}:{}: {}", path, e.source().begin.line, e.source().begin.column,
-                                 std::string(e.description())));
-  }
+  const toml::table parsed = io::parse_toml(text, path);
   const toml::table& root = parsed;
-  const Reader r{path};
+  const io::TomlReader r{path};
   FlowCase c;
   c.path = path;
   r.known_keys(root, "", {"mesh", "length_unit", "fluid", "time", "boundary", "solver"});
 
   const std::string mesh = r.text(root["mesh"], "mesh", "");
   if (mesh.empty()) r.fail("mesh", "missing: name the volume mesh (MSH 4.1 from `vesselmesh volume`)");
-  c.mesh = resolve(path, mesh);
+  c.mesh = io::resolve_path(path, mesh);
   c.length_unit = r.text(root["length_unit"], "length_unit", "mm");
   try {
     c.length_scale = io::millimetres_per(io::parse_unit(c.length_unit)) * 1e-3;
@@ -172,13 +100,13 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
     r.fail("length_unit", e.what());
   }
 
-  const View fluid = root["fluid"];
+  const io::TomlView fluid = root["fluid"];
   if (fluid && !fluid.is_table()) r.fail("fluid", "expected a table [fluid]");
   if (fluid) r.known_keys(*fluid.as_table(), "fluid", {"density", "viscosity"});
   c.density = r.number(fluid["density"], "fluid.density", c.density);
   c.viscosity = r.number(fluid["viscosity"], "fluid.viscosity", c.viscosity);
 
-  const View time = root["time"];
+  const io::TomlView time = root["time"];
   if (time && !time.is_table()) r.fail("time", "expected a table [time]");
   if (time)
     r.known_keys(*time.as_table(), "time",
@@ -204,7 +132,7 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
     c.save_every = r.integer(time["save_every"], "time.save_every", c.save_every, 1);
   }
 
-  const View boundaries = root["boundary"];
+  const io::TomlView boundaries = root["boundary"];
   if (!boundaries || !boundaries.is_array_of_tables())
     r.fail("boundary", "missing: one [[boundary]] table per tag of the mesh");
   std::set<std::string> seen;
@@ -213,7 +141,7 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
     const toml::table& table = *node.as_table();
     const std::string where = fmt::format("boundary[{}]", index++);
     r.known_keys(table, where, {"tag", "type", "profile", "flow", "waveform", "resistance", "backflow", "harmonics"});
-    const View b(node);
+    const io::TomlView b(node);
     BoundaryCondition bc;
     bc.tag = r.text(b["tag"], where + ".tag", "");
     if (bc.tag.empty()) r.fail(where + ".tag", "missing: the mesh tag this condition applies to");
@@ -248,7 +176,7 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
       bc.harmonics = r.integer(b["harmonics"], where + ".harmonics", bc.harmonics, 1);
       if (b["flow"] && b["waveform"]) r.fail(where, "give `flow` or `waveform`, not both");
       if (b["waveform"]) {
-        bc.waveform_file = resolve(path, r.text(b["waveform"], where + ".waveform", ""));
+        bc.waveform_file = io::resolve_path(path, r.text(b["waveform"], where + ".waveform", ""));
         bc.flow = Waveform::read_csv(bc.waveform_file);
       } else if (b["flow"]) {
         bc.flow = Waveform::constant(r.number(b["flow"], where + ".flow", 0.0, false));
@@ -264,7 +192,7 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
     c.boundaries.push_back(std::move(bc));
   }
 
-  const View solver = root["solver"];
+  const io::TomlView solver = root["solver"];
   if (solver && !solver.is_table()) r.fail("solver", "expected a table [solver]");
   if (solver) r.known_keys(*solver.as_table(), "solver", {"petsc_options"});
   c.petsc_options = r.text(solver["petsc_options"], "solver.petsc_options", "");

@@ -1,5 +1,6 @@
 #include "post/ring.h"
 
+#include "mesh/clean.h"
 #include "mesh/error.h"
 #include "mesh/locator.h"
 
@@ -83,6 +84,28 @@ RingSpec centerline_ring(const centerline::Centerlines& centerlines, const std::
   }
   if (!std::isfinite(best)) throw InputError(fmt::format("ring {}: no centerline to place it on", name));
   return spec;
+}
+
+std::vector<RingSpec> place_rings(const TriMesh& surface, const std::vector<RingRequest>& requests,
+                                  const Reporter& reporter) {
+  std::optional<centerline::Centerlines> centerlines;
+  std::vector<RingSpec> specs;
+  for (const RingRequest& request : requests) {
+    if (!request.on_centerline) {
+      specs.push_back(request.spec);
+      continue;
+    }
+    if (!centerlines) {
+      reporter.info("centerlines of the wall, for rings placed on them");
+      TriMesh clean = surface;
+      mesh::clean(clean);
+      centerlines = centerline::extract(clean, {}, reporter);
+    }
+    RingSpec spec = centerline_ring(*centerlines, request.spec.name, request.spec.point);
+    spec.reference = request.spec.reference;
+    specs.push_back(spec);
+  }
+  return specs;
 }
 
 Ring cut_ring(const TriMesh& wall, const std::vector<Vec3>& values, const RingSpec& spec) {

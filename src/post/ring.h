@@ -12,6 +12,7 @@
 #pragma once
 
 #include "centerline/extract.h"
+#include "mesh/reporter.h"
 #include "mesh/trimesh.h"
 
 #include <optional>
@@ -54,6 +55,18 @@ RingSpec centerline_ring(const centerline::Centerlines& centerlines, const std::
 // `values`: one vector per wall point. Throws InputError naming the ring when the plane
 // misses the wall.
 Ring cut_ring(const TriMesh& wall, const std::vector<Vec3>& values, const RingSpec& spec);
+
+// A ring as a user asks for it: a plane, or (on_centerline) a point whose plane is normal to
+// the centerline nearest it.
+struct RingRequest {
+  RingSpec spec;
+  bool on_centerline = false;
+};
+
+// Planes for the requests: those on the centerline placed on `surface`'s centerlines (traced
+// once, only when a request needs them); the others as given.
+std::vector<RingSpec> place_rings(const TriMesh& surface, const std::vector<RingRequest>& requests,
+                                  const Reporter& reporter = silent_reporter());
 
 struct PointProbe {
   std::string name;

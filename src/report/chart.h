@@ -27,8 +27,26 @@ struct LineChart {
   bool y_from_zero = false;  // the y axis starts at 0 when every value is positive
 };
 
-// A standalone SVG document. Throws InputError when a series' x and y differ in length.
+// Grouped bars: one group per category, one bar per series in each (values may be negative).
+struct BarSeries {
+  std::string name;
+  std::vector<double> values;  // one per category; NaN leaves a gap
+};
+
+struct BarChart {
+  std::string title, y_label;
+  std::vector<std::string> categories;
+  std::vector<BarSeries> series;
+  int width = 760, height = 440;
+};
+
+// A standalone SVG document. Throws InputError when a series' x and y differ in length (or a
+// bar series' values and the categories).
 std::string svg(const LineChart& chart);
+std::string svg(const BarChart& chart);
+
+// Text made safe inside XML (SVG, HTML): & < > " escaped.
+std::string xml_escape(const std::string& text);
 
 // Round tick positions covering [low, high], about `count` of them.
 std::vector<double> nice_ticks(double low, double high, int count = 6);

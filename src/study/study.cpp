@@ -1,0 +1,332 @@
+#include "study/study.h"
+
+#include "analysis/curvature.h"
+#include "analysis/open_ends.h"
+#include "centerline/distance_map.h"
+#include "centerline/extract.h"
+#include "flow/case.h"
+#include "flow/simulate.h"
+#include "io/atomic_file.h"
+#include "io/msh.h"
+#include "io/surface.h"
+#include "io/toml_reader.h"
+#include "io/units.h"
+#include "io/vtk_formats.h"
+#include "mesh/clean.h"
+#include "mesh/error.h"
+#include "post/wall_series.h"
+#include "remesh/adapt.h"
+#include "study/study_report.h"
+#include "volume/fill.h"
+#include "volume/quality.h"
+#include "volume/volume_mesh.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#ifndef VESSELMESH_VERSION
+#define VESSELMESH_VERSION "0.0.0"
+#endif
+
+namespace vesselmesh::study {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using Json = nlohmann::ordered_json;
+
+double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// FNV-1a, 64 bits: the stamps' fingerprints (not a security measure).
+std::string fingerprint(const std::string& text) {
+  uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return fmt::format("{:016x}", h);
+}
+
+// What a stamp says was made, or nothing when the stamp is missing or was made otherwise.
+std::optional<Json> matching_stamp(const std::string& path, const std::string& key) {
+  if (!fs::exists(path)) return std::nullopt;
+  try {
+    Json j = Json::parse(io::read_file(path));
+    if (j.value("key", "") == key) return j;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+StudyConfig parse_study(const std::string& text, const std::string& path) {
+  const toml::table parsed = io::parse_toml(text, path);
+  const toml::table& root = parsed;
+  const io::TomlReader r{path};
+  StudyConfig c;
+  c.path = path;
+  r.known_keys(root, "", {"surface", "units", "case", "triangles", "meshes", "reference", "volume", "post", "ring",
+                          "point"});
+  const std::string surface = r.text(root["surface"], "surface", "");
+  if (surface.empty()) r.fail("surface", "missing: the vessel surface (STL, VTP, ...) to study");
+  c.surface = io::resolve_path(path, surface);
+  c.units = r.text(root["units"], "units", "");
+  if (!c.units.empty()) {
+    try {
+      io::parse_unit(c.units);
+    } catch (const OptionError& e) {
+      r.fail("units", e.what());
+    }
+  }
+  const std::string flow_case = r.text(root["case"], "case", "");
+  if (flow_case.empty()) r.fail("case", "missing: the flow case (TOML, as for `vesselmesh simulate`) run on each mesh");
+  c.flow_case = io::resolve_path(path, flow_case);
+  c.triangles = r.number(root["triangles"], "triangles", c.triangles);
+  if (c.triangles < 100) r.fail("triangles", "at least 100");
+  if (root["meshes"]) {
+    c.kinds.clear();
+    for (const std::string& name : r.strings(root["meshes"], "meshes")) {
+      try {
+        c.kinds.push_back(sizing::parse_size_kind(name));
+      } catch (const Error& e) {
+        r.fail("meshes", e.what());
+      }
+    }
+  }
+  if (const toml::table* t = root["reference"].as_table()) {
+    r.known_keys(*t, "reference", {"levels", "factor"});
+    c.levels = r.integer(root["reference"]["levels"], "reference.levels", c.levels, 1);
+    c.factor = r.number(root["reference"]["factor"], "reference.factor", c.factor);
+    if (c.factor <= 1.0) r.fail("reference.factor", "must be more than 1 (each level has that many times the triangles)");
+  }
+  if (const toml::table* t = root["volume"].as_table()) {
+    r.known_keys(*t, "volume", {"layers", "thickness_ratio", "algorithm", "inlet", "end_names"});
+    const io::TomlView v = root["volume"];
+    c.layers = r.integer(v["layers"], "volume.layers", c.layers, 0);
+    c.thickness_ratio = r.number(v["thickness_ratio"], "volume.thickness_ratio", c.thickness_ratio);
+    c.algorithm = r.text(v["algorithm"], "volume.algorithm", c.algorithm);
+    try {
+      volume::parse_fill_algorithm(c.algorithm);
+    } catch (const Error& e) {
+      r.fail("volume.algorithm", e.what());
+    }
+    c.inlet = r.integer(v["inlet"], "volume.inlet", -1, 0);
+    c.end_names = r.strings(v["end_names"], "volume.end_names");
+  }
+  if (const toml::table* t = root["post"].as_table()) {
+    r.known_keys(*t, "post", {"time"});
+    if (root["post"]["time"]) c.time = r.number(root["post"]["time"], "post.time", 0.0, false);
+  }
+  const auto named = [&](const toml::table& t, const std::string& where) {
+    const std::string name = r.text(io::TomlView(&t)["name"], where + ".name", "");
+    const bool ok = !name.empty() && std::all_of(name.begin(), name.end(), [](char ch) {
+      return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.';
+    });
+    if (!ok) r.fail(where + ".name", "missing or not made of letters, digits, '_', '-', '.' (it names files)");
+    return name;
+  };
+  if (root["ring"]) {
+    const toml::array* rings = root["ring"].as_array();
+    if (!rings) r.fail("ring", "expected [[ring]] tables");
+    for (size_t k = 0; k < rings->size(); ++k) {
+      const std::string where = fmt::format("ring[{}]", k);
+      const toml::table* t = (*rings)[k].as_table();
+      if (!t) r.fail(where, "expected a table");
+      r.known_keys(*t, where, {"name", "point", "normal", "reference"});
+      const io::TomlView v(t);
+      post::RingRequest request;
+      request.spec.name = named(*t, where);
+      request.spec.point = r.point(v["point"], where + ".point");
+      request.on_centerline = !v["normal"];
+      if (v["normal"]) {
+        request.spec.normal = r.point(v["normal"], where + ".normal");
+        if (!(request.spec.normal.norm() > 0.0)) r.fail(where + ".normal", "is zero");
+      }
+      if (v["reference"]) request.spec.reference = r.point(v["reference"], where + ".reference");
+      c.rings.push_back(request);
+    }
+  }
+  if (root["point"]) {
+    const toml::array* points = root["point"].as_array();
+    if (!points) r.fail("point", "expected [[point]] tables");
+    for (size_t k = 0; k < points->size(); ++k) {
+      const std::string where = fmt::format("point[{}]", k);
+      const toml::table* t = (*points)[k].as_table();
+      if (!t) r.fail(where, "expected a table");
+      r.known_keys(*t, where, {"name", "point"});
+      c.points.push_back({named(*t, where), r.point(io::TomlView(t)["point"], where + ".point")});
+    }
+  }
+  if (c.rings.empty() && c.points.empty())
+    r.fail("ring", "give at least one [[ring]] or [[point]]: the study compares WSS there");
+  return c;
+}
+
+StudyConfig read_study(const std::string& path) {
+  if (!fs::exists(path)) throw InputError(fmt::format("{}: no such study file", path));
+  return parse_study(io::read_file(path), path);
+}
+
+double relative_difference(double value, double reference) {
+  if (reference == 0.0) return std::numeric_limits<double>::quiet_NaN();
+  return 100.0 * (value - reference) / std::abs(reference);
+}
+
+StudyResult run_study(const StudyConfig& config, const std::string& folder, const Reporter& reporter) {
+  const auto start = Clock::now();
+  StudyResult result;
+  fs::create_directories(folder);
+
+  // 1. The input: read, repaired, its curvature, centerlines and distance map.
+  auto step = Clock::now();
+  reporter.info(fmt::format("study: reading {}", config.surface));
+  io::ReadOptions read;
+  if (!config.units.empty()) read.units = io::parse_unit(config.units);
+  io::SurfaceFile file = io::read_surface(config.surface, read, reporter);
+  mesh::clean(file.mesh, {}, reporter);
+  const TriMesh& surface = file.mesh;
+  const flow::FlowCase base_case = flow::read_case(config.flow_case);  // checked before any long step
+  reporter.info("study: curvature, centerlines and distance map of the input");
+  const analysis::CurvatureField curvature = analysis::curvature(surface, {}, reporter);
+  const centerline::Centerlines lines = centerline::extract(surface, {}, reporter);
+  const centerline::DistanceMap distance = centerline::distance_map(surface, lines);
+  result.rings = post::place_rings(surface, config.rings, reporter);
+  result.seconds["input analysis"] = since(step);
+
+  // What every mesh depends on: the input's bytes, the options, the version.
+  std::string common = fmt::format("vesselmesh {}\n{}\nunits={}\nlayers={} ratio={} algorithm={} inlet={}\n",
+                                   VESSELMESH_VERSION, fingerprint(io::read_file(config.surface)), config.units,
+                                   config.layers, config.thickness_ratio, config.algorithm, config.inlet);
+  for (const std::string& n : config.end_names) common += n + ",";
+  std::string case_text = io::read_file(config.flow_case);
+  for (const flow::BoundaryCondition& b : base_case.boundaries)
+    if (!b.waveform_file.empty()) case_text += io::read_file(b.waveform_file);
+
+  std::vector<std::pair<std::string, sizing::SizeKind>> plan;
+  std::vector<double> targets;
+  for (sizing::SizeKind kind : config.kinds) {
+    plan.emplace_back(sizing::size_kind_name(kind), kind);
+    targets.push_back(config.triangles);
+  }
+  for (int k = 1; k <= config.levels; ++k) {
+    plan.emplace_back(fmt::format("level_{}", k), sizing::SizeKind::uniform);
+    targets.push_back(config.triangles * std::pow(config.factor, k));
+  }
+
+  for (size_t m = 0; m < plan.size(); ++m) {
+    const auto& [name, kind] = plan[m];
+    MeshRun run;
+    run.name = name;
+    run.series = name.rfind("level_", 0) == 0;
+    run.target_triangles = targets[m];
+    run.folder = (fs::path(folder) / name).string();
+    fs::create_directories(run.folder);
+    const std::string mesh_key =
+        fingerprint(common + fmt::format("kind={} triangles={}\n", sizing::size_kind_name(kind), run.target_triangles));
+    const std::string flow_key = fingerprint(mesh_key + case_text);
+    const std::string surface_file = run.folder + "/surface.vtp", volume_file = run.folder + "/volume.msh";
+    const std::string flow_dir = run.folder + "/flow", stamp_file = run.folder + "/stamp.json";
+    const std::optional<Json> stamp = matching_stamp(stamp_file, flow_key);
+    if (stamp && fs::exists(volume_file) && fs::exists(flow_dir + "/wall.pvd")) {
+      const Json& j = *stamp;
+      run.surface_triangles = j["surface_triangles"];
+      run.surface_points = j["surface_points"];
+      run.volume_points = j["volume_points"];
+      run.tetrahedra = j["tetrahedra"];
+      run.dofs = j["dofs"];
+      run.min_dihedral = j["min_dihedral"];
+      for (const auto& [k, v] : j["seconds"].items()) run.seconds[k] = v.get<double>();
+      run.reused = true;
+      reporter.info(fmt::format("study: {} ({} of {}): reused from {}", name, m + 1, plan.size(), stamp_file));
+    } else {
+      reporter.info(fmt::format("study: {} ({} of {}): surface mesh of about {:.0f} triangles", name, m + 1,
+                                plan.size(), run.target_triangles));
+      step = Clock::now();
+      const sizing::SizeField field = sizing::make_size_field(
+          surface, {.kind = kind, .target_triangles = run.target_triangles},
+          {.curvature = &curvature, .distance = &distance}, reporter);
+      remesh::RemeshOptions options;
+      options.input_radius = &distance.radius;
+      const remesh::RemeshResult remeshed =
+          remesh::adapt_to_count(surface, field.metric, run.target_triangles, options, reporter);
+      io::write_vtp(surface_file, remeshed.mesh);
+      run.seconds["remesh"] = since(step);
+
+      reporter.info(fmt::format("study: {}: volume mesh", name));
+      step = Clock::now();
+      const TriMesh& wall = remeshed.mesh;
+      const centerline::DistanceMap wall_distance =
+          centerline::distance_map(wall, centerline::extract(wall, {}, reporter));
+      volume::VolumeOptions vo;
+      vo.layer.layers = config.layers;
+      vo.layer.thickness_ratio = config.thickness_ratio;
+      vo.algorithm = volume::parse_fill_algorithm(config.algorithm);
+      vo.inlet = config.inlet;
+      vo.end_names = config.end_names;
+      const volume::VolumeResult volume_mesh =
+          volume::build_volume(wall, analysis::open_ends(wall), wall_distance.radius, vo, reporter);
+      io::write_msh(volume_file, volume_mesh.mesh);
+      const volume::VolumeQuality quality = volume::measure_volume(volume_mesh.mesh, volume_mesh.radius);
+      run.seconds["volume"] = since(step);
+
+      reporter.info(fmt::format("study: {}: flow", name));
+      step = Clock::now();
+      flow::FlowCase fc = base_case;
+      fc.mesh = volume_file;
+      const flow::SimulationSummary s = flow::simulate(fc, flow_dir, "", reporter);
+      run.seconds["flow"] = since(step);
+      run.surface_triangles = remeshed.stats.triangles;
+      run.surface_points = remeshed.stats.points;
+      run.volume_points = quality.points;
+      run.tetrahedra = quality.tets + 3 * quality.prisms;
+      run.dofs = s.dofs;
+      run.min_dihedral = quality.min_dihedral;
+      Json j = {{"key", flow_key},
+                {"mesh", name},
+                {"surface_triangles", run.surface_triangles},
+                {"surface_points", run.surface_points},
+                {"volume_points", run.volume_points},
+                {"tetrahedra", run.tetrahedra},
+                {"dofs", run.dofs},
+                {"min_dihedral", run.min_dihedral},
+                {"seconds", run.seconds}};
+      io::write_text(stamp_file, j.dump(2) + "\n");
+    }
+    if (!run.series && std::abs(run.surface_triangles - run.target_triangles) > 0.03 * run.target_triangles) {
+      const std::string warning = fmt::format(
+          "the {} mesh has {} triangles, {:+.1f} % from the {:.0f} asked: the meshes are not of equal size (the "
+          "distance bound of the remesher keeps a coarse mesh from the surface's curves; raise `triangles`)",
+          name, run.surface_triangles, 100.0 * (run.surface_triangles / run.target_triangles - 1.0),
+          run.target_triangles);
+      reporter.warning(warning);
+      result.warnings.push_back(warning);
+    }
+    result.meshes.push_back(run);
+  }
+  result.reference = static_cast<int>(result.meshes.size()) - 1;
+
+  // 6. WSS at the chosen time on the rings and points of every mesh.
+  step = Clock::now();
+  const post::WallSeries reference_series = post::read_wall_series(result.meshes.back().folder + "/flow");
+  result.time = config.time.value_or(reference_series.frames.back().time);
+  result.length_unit = reference_series.length_unit;
+  for (MeshRun& run : result.meshes) {
+    const post::WallField wall = post::wall_at_time(post::read_wall_series(run.folder + "/flow"), result.time);
+    for (const post::RingSpec& spec : result.rings) run.rings.push_back(post::cut_ring(wall.mesh, wall.wss, spec));
+    run.points = post::probe_points(wall.mesh, wall.wss, config.points);
+  }
+  result.seconds["wss on rings and points"] = since(step);
+
+  // 7. The report (the total it states stops before it).
+  result.seconds["total before the report"] = since(start);
+  write_report(config, result, folder, reporter);
+  return result;
+}
+
+}  // namespace vesselmesh::study

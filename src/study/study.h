@@ -1,0 +1,97 @@
+// The mesh-impact study (the seed paper's experiment) on any vessel, end to end:
+//  1. curvature, centerlines and distance map of the input;
+//  2. the four surface meshes (uniform, distance, curvature, anisotropic) with the same number
+//     of triangles (the sizing's target count, within its tolerance);
+//  3. their volume meshes with the boundary layer;
+//  4. a uniform refinement series (`levels` meshes of triangles x factor^k, k = 1..levels), the
+//     finest being the reference;
+//  5. the flow case on every mesh;
+//  6. WSS at the chosen time on each ring and point; the relative difference of each ring's
+//     minimum and of each point's WSS against the reference;
+//  7. a report (study_report.h).
+// Each mesh's surface, volume and flow are kept in DIR/<mesh>/ with a stamp of what made them
+// (a hash of the input's bytes, the options, the case and its waveforms, the version): a step
+// whose stamp matches is reused, so a study can be resumed and extended.
+//
+// The study file (TOML; paths relative to it):
+//   surface = "vessel.stl"     units = "mm" (the surface's unit, optional)
+//   case = "flow.toml"         # a flow case; its `mesh` is replaced by each volume mesh
+//   triangles = 8000           # the four meshes' surface triangles
+//   meshes = ["uniform", "distance", "curvature", "anisotropic"]
+//   [reference] levels = 4, factor = 2.0
+//   [volume]    layers = 4, thickness_ratio = 0.1, algorithm = "delaunay", inlet = K,
+//               end_names = ["inlet", "outlet_1", ...]
+//   [post]      time = 0.21 (s; default the last saved)
+//   [[ring]]    name = "ring1", point = [x, y, z], normal = [nx, ny, nz] (omit it: the plane
+//               normal to the centerline nearest the point), reference = [rx, ry, rz] (optional)
+//   [[point]]   name = "A", point = [x, y, z]
+#pragma once
+
+#include "mesh/reporter.h"
+#include "post/ring.h"
+#include "sizing/size_field.h"
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vesselmesh::study {
+
+struct StudyConfig {
+  std::string path;        // the study file
+  std::string surface;     // resolved against the study file's folder
+  std::string units;       // the surface's unit; empty: mm
+  std::string flow_case;   // resolved
+  double triangles = 8000.0;
+  std::vector<sizing::SizeKind> kinds = {sizing::SizeKind::uniform, sizing::SizeKind::distance,
+                                         sizing::SizeKind::curvature, sizing::SizeKind::anisotropic};
+  int levels = 4;
+  double factor = 2.0;
+  int layers = 4;
+  double thickness_ratio = 0.1;
+  std::string algorithm = "delaunay";
+  int inlet = -1;
+  std::vector<std::string> end_names;
+  std::optional<double> time;
+  std::vector<post::RingRequest> rings;
+  std::vector<post::PointSpec> points;
+};
+
+// Every mistake is an InputError naming the file and the key.
+StudyConfig read_study(const std::string& path);
+StudyConfig parse_study(const std::string& text, const std::string& path);
+
+struct MeshRun {
+  std::string name;       // uniform, distance, curvature, anisotropic, or level_1 ... level_N
+  bool series = false;    // a level of the refinement series
+  double target_triangles = 0.0;
+  int surface_triangles = 0, surface_points = 0;
+  int volume_points = 0, tetrahedra = 0, dofs = 0;
+  double min_dihedral = 0.0;  // degrees
+  std::map<std::string, double> seconds;  // remesh, volume, flow (those of the run that made them)
+  bool reused = false;                    // loaded from an earlier run
+  std::string folder;                     // DIR/<name>
+  std::vector<post::Ring> rings;
+  std::vector<post::PointProbe> points;
+};
+
+struct StudyResult {
+  std::vector<MeshRun> meshes;  // the compared meshes, then the series coarse to fine
+  int reference = -1;           // index of the finest level
+  double time = 0.0;            // s: when WSS was read
+  std::vector<post::RingSpec> rings;
+  std::string length_unit = "mm";
+  std::map<std::string, double> seconds;  // input analysis, post-processing, report, total
+  std::vector<std::string> warnings;      // e.g. compared meshes off their triangle count
+  std::string report_markdown, report_html;
+};
+
+// Relative difference in percent: 100 (value - reference) / |reference| (NaN when the
+// reference is 0).
+double relative_difference(double value, double reference);
+
+StudyResult run_study(const StudyConfig& config, const std::string& folder,
+                      const Reporter& reporter = silent_reporter());
+
+}  // namespace vesselmesh::study

@@ -1,0 +1,286 @@
+#include "study/study_report.h"
+
+#include "io/atomic_file.h"
+#include "post/wall_series.h"
+#include "report/chart.h"
+#include "report/picture.h"
+#include "report/raster.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#ifndef VESSELMESH_VERSION
+#define VESSELMESH_VERSION "0.0.0"
+#endif
+
+namespace vesselmesh::study {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+// The report as a list of blocks, written out as Markdown and as HTML.
+struct Document {
+  std::string markdown, html;
+  std::string folder;
+
+  void heading(const std::string& text, int level = 2) {
+    markdown += std::string(level, '#') + " " + text + "\n\n";
+    html += fmt::format("<h{0}>{1}</h{0}>\n", level, report::xml_escape(text));
+  }
+  void paragraph(const std::string& text) {
+    markdown += text + "\n\n";
+    html += "<p>" + report::xml_escape(text) + "</p>\n";
+  }
+  void code(const std::string& text) {
+    markdown += "```\n" + text + (text.empty() || text.back() == '\n' ? "" : "\n") + "```\n\n";
+    html += "<pre>" + report::xml_escape(text) + "</pre>\n";
+  }
+  void table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows) {
+    markdown += "|";
+    for (const std::string& h : header) markdown += " " + h + " |";
+    markdown += "\n|";
+    for (size_t k = 0; k < header.size(); ++k) markdown += " --- |";
+    markdown += "\n";
+    html += "<table>\n<tr>";
+    for (const std::string& h : header) html += "<th>" + report::xml_escape(h) + "</th>";
+    html += "</tr>\n";
+    for (const auto& row : rows) {
+      markdown += "|";
+      html += "<tr>";
+      for (const std::string& cell : row) {
+        markdown += " " + cell + " |";
+        html += "<td>" + report::xml_escape(cell) + "</td>";
+      }
+      markdown += "\n";
+      html += "</tr>\n";
+    }
+    markdown += "\n";
+    html += "</table>\n";
+  }
+  // Writes figures/NAME.svg and .png; the Markdown links the PNG, the HTML holds the SVG.
+  void figure(const std::string& name, const std::string& svg, const std::string& caption) {
+    report::write_svg_and_png(folder + "/figures/" + name, svg);
+    markdown += fmt::format("![{0}](figures/{1}.png)\n\n*{0}* ([SVG](figures/{1}.svg))\n\n", caption, name);
+    const size_t at = svg.find("<svg");
+    html += "<figure>" + svg.substr(at == std::string::npos ? 0 : at) + "<figcaption>" + report::xml_escape(caption) +
+            "</figcaption></figure>\n";
+  }
+};
+
+std::string number(double v, int digits = 4) { return std::isfinite(v) ? fmt::format("{:.{}g}", v, digits) : "n/a"; }
+std::string percent(double v) { return std::isfinite(v) ? fmt::format("{:+.2f} %", v) : "n/a"; }
+
+}  // namespace
+
+void write_report(const StudyConfig& config, StudyResult& result, const std::string& folder, const Reporter& reporter) {
+  reporter.info("study: report");
+  fs::create_directories(folder + "/figures");
+  const std::vector<MeshRun>& meshes = result.meshes;
+  const MeshRun& reference = meshes[result.reference];
+  const std::string& unit = result.length_unit;
+  Document doc;
+  doc.folder = folder;
+  doc.html = "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>vesselmesh mesh-impact study</title>\n"
+             "<style>body{font-family:sans-serif;max-width:980px;margin:2em auto;padding:0 1em}"
+             "table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:3px 8px;text-align:right}"
+             "figure{margin:1em 0}figcaption{font-style:italic}pre{background:#f4f4f4;padding:.6em}</style>"
+             "</head><body>\n";
+  doc.heading("Impact of the mesh on wall shear stress", 1);
+  doc.paragraph(fmt::format("Vessel: {}. Flow case: {}. WSS read at t = {:g} s. Reference: {} (the finest of the "
+                            "uniform refinement series). Lengths in {}, stresses in Pa. vesselmesh {}.",
+                            config.surface, config.flow_case, result.time, reference.name, unit, VESSELMESH_VERSION));
+
+  for (const std::string& w : result.warnings) doc.paragraph("Warning: " + w + ".");
+  doc.heading("Table 1: the meshes");
+  std::vector<std::vector<std::string>> rows;
+  for (const MeshRun& m : meshes)
+    rows.push_back({m.name, m.series ? "refinement series" : "compared", fmt::format("{:.0f}", m.target_triangles),
+                    fmt::format("{} ({:+.1f} %)", m.surface_triangles,
+                                100.0 * (m.surface_triangles / m.target_triangles - 1.0)),
+                    std::to_string(m.surface_points),
+                    std::to_string(m.volume_points), std::to_string(m.tetrahedra), std::to_string(m.dofs),
+                    number(m.min_dihedral, 3)});
+  doc.table({"mesh", "role", "target triangles", "surface triangles", "surface nodes", "volume nodes",
+             "tetrahedra (prisms as 3)", "flow unknowns", "least dihedral (deg)"},
+            rows);
+
+  // Fig. 11: WSS along each ring.
+  for (size_t r = 0; r < result.rings.size(); ++r) {
+    const std::string& ring = result.rings[r].name;
+    doc.heading(fmt::format("WSS along ring {}", ring));
+    for (const bool series : {true, false}) {
+      report::LineChart chart;
+      chart.title = fmt::format("Ring {}: {} (t = {:g} s)", ring, series ? "refinement series" : "compared meshes",
+                                result.time);
+      chart.x_label = fmt::format("arc length ({}) from angle 0", unit);
+      chart.y_label = "wall shear stress magnitude (Pa)";
+      chart.y_from_zero = true;
+      for (size_t m = 0; m < meshes.size(); ++m) {
+        if (meshes[m].series != series && static_cast<int>(m) != result.reference) continue;
+        report::Series s{meshes[m].name, {}, {}, static_cast<int>(m) == result.reference && !series};
+        for (const post::RingSample& sample : meshes[m].rings[r].samples) {
+          s.x.push_back(sample.arc_length);
+          s.y.push_back(sample.magnitude);
+        }
+        chart.series.push_back(s);
+      }
+      doc.figure(fmt::format("ring_{}_{}", ring, series ? "series" : "meshes"), report::svg(chart),
+                 fmt::format("WSS magnitude along ring {}, {}", ring,
+                             series ? "uniform refinement series" : "the compared meshes against the reference"));
+    }
+  }
+
+  // Figs. 12-14: relative differences against the reference.
+  Json numbers = Json::array();
+  const auto difference_chart = [&](const std::string& title) {
+    report::BarChart chart;
+    chart.title = title;
+    chart.y_label = "difference from the reference (%)";
+    for (const MeshRun& m : meshes)
+      if (&m != &reference) chart.categories.push_back(m.name);
+    return chart;
+  };
+  if (!result.rings.empty()) {
+    doc.heading("Minimum WSS on each ring against the reference");
+    report::BarChart chart = difference_chart("Relative difference of the minimum WSS on each ring");
+    std::vector<std::vector<std::string>> table;
+    for (size_t r = 0; r < result.rings.size(); ++r) {
+      const post::Ring& ref_ring = reference.rings[r];
+      const double ref_min = ref_ring.samples[ref_ring.minimum].magnitude;
+      report::BarSeries s{"ring " + result.rings[r].name, {}};
+      for (const MeshRun& m : meshes) {
+        if (&m == &reference) continue;
+        const post::RingSample& least = m.rings[r].samples[m.rings[r].minimum];
+        const double d = relative_difference(least.magnitude, ref_min);
+        s.values.push_back(d);
+        table.push_back({result.rings[r].name, m.name, number(least.magnitude), number(ref_min),
+                         number(least.angle, 4), percent(d)});
+        numbers.push_back({{"what", "ring minimum"}, {"ring", result.rings[r].name}, {"mesh", m.name},
+                           {"wss_Pa", least.magnitude}, {"reference_Pa", ref_min}, {"angle_deg", least.angle},
+                           {"relative_difference_percent", d}});
+      }
+      chart.series.push_back(s);
+    }
+    doc.figure("ring_minimum_differences", report::svg(chart),
+               "Relative difference of each ring's minimum WSS from the reference's, per mesh");
+    doc.table({"ring", "mesh", "minimum WSS (Pa)", "reference (Pa)", "at angle (deg)", "difference"}, table);
+  }
+  if (!config.points.empty()) {
+    doc.heading("WSS at the points against the reference");
+    report::BarChart chart = difference_chart("Relative difference of the WSS at each point");
+    std::vector<std::vector<std::string>> table;
+    for (size_t p = 0; p < config.points.size(); ++p) {
+      const double ref = reference.points[p].value.norm();
+      report::BarSeries s{"point " + config.points[p].name, {}};
+      for (const MeshRun& m : meshes) {
+        if (&m == &reference) continue;
+        const double v = m.points[p].value.norm(), d = relative_difference(v, ref);
+        s.values.push_back(d);
+        table.push_back({config.points[p].name, m.name, number(v), number(ref), percent(d)});
+        numbers.push_back({{"what", "point"}, {"point", config.points[p].name}, {"mesh", m.name}, {"wss_Pa", v},
+                           {"reference_Pa", ref}, {"relative_difference_percent", d}});
+      }
+      chart.series.push_back(s);
+    }
+    doc.figure("point_differences", report::svg(chart), "Relative difference of the WSS at each point, per mesh");
+    doc.table({"point", "mesh", "WSS (Pa)", "reference (Pa)", "difference"}, table);
+  }
+
+  // Pictures: the compared surface meshes, and the WSS field on them and on the reference.
+  doc.heading("The surface meshes");
+  const std::optional<Vec3> view;
+  std::vector<const MeshRun*> pictured;
+  for (const MeshRun& m : meshes)
+    if (!m.series) pictured.push_back(&m);
+  pictured.push_back(&reference);
+  double high = 0.0;
+  std::vector<post::WallField> walls;
+  for (const MeshRun* m : pictured) {
+    walls.push_back(post::wall_at_time(post::read_wall_series(m->folder + "/flow"), result.time));
+    std::vector<double> magnitude;
+    for (const Vec3& t : walls.back().wss) magnitude.push_back(t.norm());
+    if (m == &reference && !magnitude.empty()) {  // the colour range: 0 to the reference's 99th percentile
+      std::vector<double> sorted = magnitude;
+      const size_t k = static_cast<size_t>(0.99 * static_cast<double>(sorted.size() - 1));
+      std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(k), sorted.end());
+      high = sorted[k];
+    }
+  }
+  const Vec3 broadside = report::broadside_view(walls.back().mesh);
+  for (size_t k = 0; k + 1 < pictured.size(); ++k) {
+    report::PictureOptions o;
+    o.title = fmt::format("{}: {} triangles", pictured[k]->name, pictured[k]->surface_triangles);
+    o.view = broadside;
+    doc.figure("mesh_" + pictured[k]->name, report::surface_svg(walls[k].mesh, nullptr, o),
+               fmt::format("The {} surface mesh", pictured[k]->name));
+  }
+  doc.heading(fmt::format("The WSS field at t = {:g} s", result.time));
+  for (size_t k = 0; k < pictured.size(); ++k) {
+    std::vector<double> magnitude;
+    for (const Vec3& t : walls[k].wss) magnitude.push_back(t.norm());
+    report::PictureOptions o;
+    o.title = fmt::format("WSS on {} (t = {:g} s)", pictured[k]->name, result.time);
+    o.view = broadside;
+    o.edges = false;
+    o.scalar_label = "|wss| (Pa)";
+    o.low = 0.0;
+    o.high = high > 0.0 ? high : 1.0;
+    doc.figure("wss_" + pictured[k]->name, report::surface_svg(walls[k].mesh, &magnitude, o),
+               fmt::format("WSS magnitude on the {} mesh (colours 0 to the reference's 99th percentile, {:.3g} Pa)",
+                           pictured[k]->name, o.high));
+  }
+
+  doc.heading("Timings");
+  std::vector<std::vector<std::string>> timing;
+  for (const MeshRun& m : meshes) {
+    const auto seconds = [&](const char* k) { return m.seconds.count(k) ? number(m.seconds.at(k), 3) : "-"; };
+    timing.push_back({m.name, seconds("remesh"), seconds("volume"), seconds("flow"), m.reused ? "reused" : "computed"});
+  }
+  doc.table({"mesh", "surface mesh (s)", "volume mesh (s)", "flow (s)", "this run"}, timing);
+  std::vector<std::vector<std::string>> steps;
+  for (const auto& [name, s] : result.seconds) steps.push_back({name, number(s, 3)});
+  doc.table({"step", "seconds"}, steps);
+
+  doc.heading("Version and options");
+  doc.paragraph(fmt::format("vesselmesh {}. The study file {}:", VESSELMESH_VERSION, config.path));
+  doc.code(io::read_file(config.path));
+  doc.paragraph(fmt::format("The flow case {}:", config.flow_case));
+  doc.code(io::read_file(config.flow_case));
+  doc.html += "</body></html>\n";
+
+  io::write_text(folder + "/report.md", doc.markdown);
+  io::write_text(folder + "/report.html", doc.html);
+  result.report_markdown = folder + "/report.md";
+  result.report_html = folder + "/report.html";
+
+  Json j;
+  j["version"] = VESSELMESH_VERSION;
+  j["study"] = config.path;
+  j["time_s"] = result.time;
+  j["units"] = {{"length", unit}, {"wss", "Pa"}, {"time", "s"}};
+  j["reference"] = reference.name;
+  Json list = Json::array();
+  for (const MeshRun& m : meshes) {
+    Json rings = Json::array();
+    for (const post::Ring& r : m.rings)
+      rings.push_back({{"name", r.name}, {"length", r.length}, {"minimum_wss_Pa", r.samples[r.minimum].magnitude},
+                       {"minimum_angle_deg", r.samples[r.minimum].angle}});
+    list.push_back({{"name", m.name}, {"series", m.series}, {"target_triangles", m.target_triangles},
+                    {"surface_triangles", m.surface_triangles}, {"surface_points", m.surface_points},
+                    {"volume_points", m.volume_points}, {"tetrahedra", m.tetrahedra}, {"dofs", m.dofs},
+                    {"min_dihedral_deg", m.min_dihedral}, {"seconds", m.seconds}, {"reused", m.reused},
+                    {"rings", rings}});
+  }
+  j["meshes"] = list;
+  j["differences"] = numbers;
+  j["seconds"] = result.seconds;
+  j["warnings"] = result.warnings;
+  io::write_text(folder + "/study.json", j.dump(2) + "\n");
+}
+
+}  // namespace vesselmesh::study

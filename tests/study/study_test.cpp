@@ -1,0 +1,194 @@
+#include "study/study.h"
+
+#include "io/atomic_file.h"
+#include "mesh/error.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+
+namespace vesselmesh::study {
+namespace {
+
+const char* kCase = R"(mesh = "replaced.msh"
+length_unit = "mm"
+[fluid]
+density = 1060.0
+viscosity = 0.0035
+[time]
+steady = true
+[[boundary]]
+tag = "inlet"
+type = "velocity"
+flow = 2.0
+[[boundary]]
+tag = "outlet_1"
+type = "traction"
+[[boundary]]
+tag = "outlet_2"
+type = "traction"
+[[boundary]]
+tag = "wall"
+type = "wall"
+)";
+
+std::string study_text(const std::string& extra = "") {
+  return std::string("surface = \"") + VESSELMESH_DATA_DIR + "/y_bifurcation.stl\"\ncase = \"flow.toml\"\n" + extra;
+}
+
+TEST(StudyFile, ReadsEveryKeyAndResolvesPaths) {
+  const StudyConfig c = parse_study(study_text(R"(triangles = 3000
+meshes = ["uniform", "anisotropic"]
+[reference]
+levels = 3
+factor = 1.5
+[volume]
+layers = 2
+thickness_ratio = 0.15
+algorithm = "hxt"
+end_names = ["in", "a", "b"]
+[post]
+time = 0.21
+[[ring]]
+name = "r1"
+point = [0, 0, -10]
+normal = [0, 0, 1]
+reference = [1, 0, 0]
+[[ring]]
+name = "on_centerline"
+point = [6, 0, 8]
+[[point]]
+name = "A"
+point = [0, 3, 0]
+)"),
+                                   "/some/where/study.toml");
+  EXPECT_EQ(c.flow_case, "/some/where/flow.toml");
+  EXPECT_DOUBLE_EQ(c.triangles, 3000);
+  ASSERT_EQ(c.kinds.size(), 2u);
+  EXPECT_EQ(c.kinds[1], sizing::SizeKind::anisotropic);
+  EXPECT_EQ(c.levels, 3);
+  EXPECT_DOUBLE_EQ(c.factor, 1.5);
+  EXPECT_EQ(c.layers, 2);
+  EXPECT_DOUBLE_EQ(c.thickness_ratio, 0.15);
+  EXPECT_EQ(c.algorithm, "hxt");
+  EXPECT_EQ(c.end_names, (std::vector<std::string>{"in", "a", "b"}));
+  ASSERT_TRUE(c.time.has_value());
+  EXPECT_DOUBLE_EQ(*c.time, 0.21);
+  ASSERT_EQ(c.rings.size(), 2u);
+  EXPECT_FALSE(c.rings[0].on_centerline);
+  EXPECT_EQ(c.rings[0].spec.normal, Vec3(0, 0, 1));
+  EXPECT_EQ(*c.rings[0].spec.reference, Vec3(1, 0, 0));
+  EXPECT_TRUE(c.rings[1].on_centerline);
+  ASSERT_EQ(c.points.size(), 1u);
+  EXPECT_EQ(c.points[0].point, Vec3(0, 3, 0));
+}
+
+TEST(StudyFile, NamesTheKeyOfEveryMistake) {
+  const auto error = [](const std::string& text) {
+    try {
+      parse_study(text, "s.toml");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string ring = "[[ring]]\nname = \"r\"\npoint = [0, 0, 0]\n";
+  EXPECT_NE(error("case = \"c.toml\"\n" + ring).find("s.toml: surface: missing"), std::string::npos);
+  EXPECT_NE(error(study_text("triangles = -4\n" + ring)).find("triangles: must be positive"), std::string::npos);
+  EXPECT_NE(error(study_text("meshes = [\"fine\"]\n" + ring)).find("meshes:"), std::string::npos);
+  EXPECT_NE(error(study_text("[reference]\nfactor = 1.0\n" + ring)).find("reference.factor"), std::string::npos);
+  EXPECT_NE(error(study_text("[volume]\nalgorithm = \"magic\"\n" + ring)).find("volume.algorithm"), std::string::npos);
+  EXPECT_NE(error(study_text("[[ring]]\nname = \"a b\"\npoint = [0, 0, 0]\n")).find("ring[0].name"), std::string::npos);
+  EXPECT_NE(error(study_text("[[ring]]\nname = \"r\"\npoint = [0, 0]\n")).find("ring[0].point: expected three"),
+            std::string::npos);
+  EXPECT_NE(error(study_text("[[point]]\nname = \"p\"\npoint = [0, 0, 0]\ncolour = 1\n")).find("point[0].colour: unknown"),
+            std::string::npos);
+  EXPECT_NE(error(study_text()).find("at least one [[ring]] or [[point]]"), std::string::npos);
+  EXPECT_NE(error(study_text("x = [\n")).find("s.toml:"), std::string::npos);
+  EXPECT_TRUE(std::isnan(relative_difference(1.0, 0.0)));
+  EXPECT_NEAR(relative_difference(1.1, 1.0), 10.0, 1e-9);
+  EXPECT_NEAR(relative_difference(-0.9, -1.0), 10.0, 1e-9);  // against |reference|
+}
+
+// The study end to end on the bundled bifurcation, small: two meshes compared, one level.
+TEST(Study, RunsEndToEndAndResumes) {
+  test::TemporaryFolder tmp;
+  test::write_bytes(tmp.path("flow.toml"), kCase);
+  test::write_bytes(tmp.path("study.toml"), study_text(R"(triangles = 4000
+meshes = ["uniform", "curvature"]
+[reference]
+levels = 1
+factor = 2.0
+[volume]
+layers = 2
+[[ring]]
+name = "parent"
+point = [0, 0, -10]
+normal = [0, 0, 1]
+[[ring]]
+name = "daughter"
+point = [6, 0, 8.5]
+[[point]]
+name = "A"
+point = [0, 3, 0]
+)"));
+  const StudyConfig config = read_study(tmp.path("study.toml"));
+  const StudyResult r = run_study(config, tmp.path("out"));
+  ASSERT_EQ(r.meshes.size(), 3u);
+  EXPECT_EQ(r.reference, 2);
+  EXPECT_EQ(r.meshes[2].name, "level_1");
+  EXPECT_TRUE(r.meshes[2].series);
+  EXPECT_DOUBLE_EQ(r.meshes[2].target_triangles, 8000);
+  for (const MeshRun& m : r.meshes) {
+    EXPECT_FALSE(m.reused);
+    EXPECT_NEAR(m.surface_triangles, m.target_triangles, 0.03 * m.target_triangles) << m.name;
+    EXPECT_GT(m.tetrahedra, m.surface_triangles) << m.name;
+    ASSERT_EQ(m.rings.size(), 2u);
+    ASSERT_EQ(m.points.size(), 1u);
+    // The parent ring is the circle of radius 3 at z = -10.
+    EXPECT_NEAR(m.rings[0].length, 2 * std::numbers::pi * 3.0, 0.03 * 2 * std::numbers::pi * 3.0) << m.name;
+    EXPECT_TRUE(m.rings[1].closed) << m.name;
+  }
+  EXPECT_TRUE(r.warnings.empty());
+  // Mesh against reference: the minimum on the straight parent agrees within 10 %.
+  const auto least = [&](int m, int ring) {
+    return r.meshes[m].rings[ring].samples[r.meshes[m].rings[ring].minimum].magnitude;
+  };
+  for (int m = 0; m < 2; ++m) EXPECT_LT(std::abs(relative_difference(least(m, 0), least(2, 0))), 10.0);
+  // The centerline ring is placed on the daughter's centerline: normal along the branch (35 deg).
+  EXPECT_NEAR(std::abs(r.rings[1].normal.dot(Vec3(std::sin(35 * std::numbers::pi / 180), 0,
+                                                   std::cos(35 * std::numbers::pi / 180)))),
+              1.0, 0.01);
+  for (const char* f : {"report.md", "report.html", "study.json", "figures/ring_parent_series.svg",
+                        "figures/ring_parent_series.png", "figures/ring_minimum_differences.png",
+                        "figures/point_differences.svg", "figures/mesh_uniform.png", "figures/wss_level_1.png",
+                        "uniform/surface.vtp", "uniform/volume.msh", "uniform/flow/wall.pvd", "level_1/stamp.json"})
+    EXPECT_TRUE(std::filesystem::exists(tmp.path(std::string("out/") + f))) << f;
+  const std::string md = io::read_file(tmp.path("out/report.md"));
+  EXPECT_NE(md.find("## Table 1: the meshes"), std::string::npos);
+  EXPECT_NE(md.find("| curvature | compared | 4000 |"), std::string::npos) << md.substr(0, 1500);
+  const std::string html = io::read_file(tmp.path("out/report.html"));
+  EXPECT_NE(html.find("<svg"), std::string::npos);  // pictures inline
+  const nlohmann::json j = nlohmann::json::parse(io::read_file(tmp.path("out/study.json")));
+  EXPECT_EQ(j["differences"].size(), 2u * 2u + 2u);  // 2 rings x 2 meshes, 1 point x 2 meshes
+
+  // Again: every mesh reused, the same numbers.
+  const StudyResult again = run_study(config, tmp.path("out"));
+  for (size_t m = 0; m < again.meshes.size(); ++m) {
+    EXPECT_TRUE(again.meshes[m].reused) << again.meshes[m].name;
+    EXPECT_EQ(again.meshes[m].surface_triangles, r.meshes[m].surface_triangles);
+    EXPECT_DOUBLE_EQ(least(static_cast<int>(m), 0),
+                     again.meshes[m].rings[0].samples[again.meshes[m].rings[0].minimum].magnitude);
+  }
+  // A changed case reruns the flows (not kept from the stamp).
+  test::write_bytes(tmp.path("flow.toml"), std::string(kCase) + "# changed\n");
+  const StudyResult changed = run_study(read_study(tmp.path("study.toml")), tmp.path("out"));
+  EXPECT_FALSE(changed.meshes[0].reused);
+}
+
+}  // namespace
+}  // namespace vesselmesh::study
