@@ -114,6 +114,14 @@ TEST(StudyFile, NamesTheKeyOfEveryMistake) {
   EXPECT_NEAR(relative_difference(-0.9, -1.0), 10.0, 1e-9);  // against |reference|
 }
 
+TEST(StudyFile, TheExampleStudyReads) {
+  const StudyConfig c = read_study(std::string(VESSELMESH_EXAMPLES_DIR) + "/bifurcation_study.toml");
+  EXPECT_TRUE(std::filesystem::exists(c.surface)) << c.surface;
+  EXPECT_TRUE(std::filesystem::exists(c.flow_case)) << c.flow_case;
+  EXPECT_EQ(c.kinds.size(), 4u);
+  EXPECT_EQ(c.rings.size(), 2u);
+}
+
 // The study end to end on the bundled bifurcation, small: two meshes compared, one level.
 TEST(Study, RunsEndToEndAndResumes) {
   test::TemporaryFolder tmp;
