@@ -250,8 +250,11 @@ Command add_wss_command(CLI::App& parent) {
               std::vector<const post::WallFrame*> chosen;
               for (const post::WallFrame& f : series.frames)
                 if (f.time >= window->first - tolerance && f.time <= window->second + tolerance) chosen.push_back(&f);
+              TriMesh indices_wall;  // the first frame's wall carries the indices
               for (size_t k = 0; k < chosen.size(); ++k) {
-                accumulator.add(chosen[k]->time, post::read_wall_frame(*chosen[k]).wss);
+                post::WallField frame = post::read_wall_frame(*chosen[k]);
+                accumulator.add(chosen[k]->time, frame.wss);
+                if (k == 0) indices_wall = std::move(frame.mesh);
                 reporter.progress("reading frames", double(k + 1) / chosen.size());
               }
               if (accumulator.samples() < 2)
@@ -260,8 +263,7 @@ Command add_wss_command(CLI::App& parent) {
                                              o->indices, accumulator.samples(), series.frames.front().time,
                                              series.frames.back().time, series.frames.size()));
               const post::WssIndices r = accumulator.result();
-              const post::WallField first = post::read_wall_frame(*chosen.front());
-              io::write_vtp(out + "/indices.vtp", first.mesh,
+              io::write_vtp(out + "/indices.vtp", indices_wall,
                             {Field::scalar("tawss", r.tawss), Field::scalar("osi", r.osi), Field::scalar("rrt", r.rrt),
                              Field::scalar("twssg", r.twssg)});
               indices = {{"file", "indices.vtp"}, {"start_s", r.start}, {"end_s", r.end}, {"frames", r.samples},

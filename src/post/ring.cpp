@@ -195,9 +195,9 @@ Ring cut_ring(const TriMesh& wall, const std::vector<Vec3>& values, const RingSp
   // Closed: start where the angle passes zero going counter-clockwise (split the segment there).
   std::vector<std::pair<Vec3, Vec3>> points;  // position, value
   for (int v : path) points.emplace_back(nodes[v].point, nodes[v].value);
+  bool found = false;  // closed and started where the angle passes zero
   if (ring.closed) {
     size_t start = 0;
-    bool found = false;
     for (size_t k = 0; k < points.size() && !found; ++k) {
       const auto& a = points[k];
       const auto& b = points[(k + 1) % points.size()];
@@ -226,8 +226,8 @@ Ring cut_ring(const TriMesh& wall, const std::vector<Vec3>& values, const RingSp
     sample.arc_length = s;
     double angle = angle_of(points[k].first) * 180.0 / std::numbers::pi;
     if (angle < 0.0) angle += 360.0;
-    if (ring.closed && k == 0) angle = 0.0;  // the start: where the angle passes zero
-    if (ring.closed && k + 1 == points.size()) angle = 360.0;
+    if (found && k == 0) angle = 0.0;  // the start: where the angle passes zero
+    if (found && k + 1 == points.size()) angle = 360.0;
     sample.angle = angle;
     sample.point = points[k].first;
     sample.value = points[k].second;

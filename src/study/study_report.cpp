@@ -16,6 +16,9 @@
 #ifndef VESSELMESH_VERSION
 #define VESSELMESH_VERSION "0.0.0"
 #endif
+#ifndef VESSELMESH_DEPENDENCIES
+#define VESSELMESH_DEPENDENCIES "unknown"
+#endif
 
 namespace vesselmesh::study {
 namespace {
@@ -247,7 +250,8 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
   doc.table({"step", "seconds"}, steps);
 
   doc.heading("Version and options");
-  doc.paragraph(fmt::format("vesselmesh {}. The study file {}:", VESSELMESH_VERSION, config.path));
+  doc.paragraph(fmt::format("vesselmesh {} (built with {}). The study file {}:", VESSELMESH_VERSION,
+                            VESSELMESH_DEPENDENCIES, config.path));
   doc.code(io::read_file(config.path));
   doc.paragraph(fmt::format("The flow case {}:", config.flow_case));
   doc.code(io::read_file(config.flow_case));
@@ -260,6 +264,7 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
 
   Json j;
   j["version"] = VESSELMESH_VERSION;
+  j["dependencies"] = VESSELMESH_DEPENDENCIES;
   j["study"] = config.path;
   j["time_s"] = result.time;
   j["units"] = {{"length", unit}, {"wss", "Pa"}, {"time", "s"}};
