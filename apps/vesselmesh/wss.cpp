@@ -8,8 +8,8 @@
 #include "post/indices.h"
 #include "post/ring.h"
 #include "post/wall_series.h"
-#include "report/chart.h"
-#include "report/raster.h"
+#include "study/chart.h"
+#include "study/raster.h"
 
 #include <fmt/format.h>
 
@@ -31,10 +31,7 @@ std::vector<std::string> split(const std::string& text, char separator) {
 }
 
 std::string checked_name(const std::string& name, const std::string& text, const char* option) {
-  const bool ok = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
-  });
-  if (!ok)
+  if (!io::is_file_name_safe(name))
     throw OptionError(fmt::format("{} '{}': the name must be letters, digits, '_', '-' or '.' (it names files)",
                                   option, text));
   return name;
@@ -70,8 +67,9 @@ std::pair<double, double> parse_window(const std::string& text) {
   const std::vector<std::string> parts = split(text, ':');
   try {
     if (parts.size() == 2) {
-      const double a = std::stod(parts[0]), b = std::stod(parts[1]);
-      if (b > a) return {a, b};
+      size_t used_a = 0, used_b = 0;
+      const double a = std::stod(parts[0], &used_a), b = std::stod(parts[1], &used_b);
+      if (used_a == parts[0].size() && used_b == parts[1].size() && b > a) return {a, b};
     }
   } catch (const std::exception&) {
   }
@@ -85,8 +83,8 @@ void write_ring(const std::string& dir, const post::Ring& ring, double time, con
   csv += fmt::format("arc_length_{0},angle_deg,x_{0},y_{0},z_{0},wss_x_Pa,wss_y_Pa,wss_z_Pa,wss_axial_Pa,"
                      "wss_circumferential_Pa,wss_magnitude_Pa\n",
                      unit);
-  report::Series magnitude{"|wss|", {}, {}}, axial{"axial", {}, {}, true}, circumferential{"circumferential", {}, {}, true};
-  report::Series magnitude_by_angle = magnitude;
+  study::Series magnitude{"|wss|", {}, {}}, axial{"axial", {}, {}, true}, circumferential{"circumferential", {}, {}, true};
+  study::Series magnitude_by_angle = magnitude;
   for (const post::RingSample& s : ring.samples) {
     csv += fmt::format("{:.9g},{:.6g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", s.arc_length,
                        s.angle, s.point.x(), s.point.y(), s.point.z(), s.value.x(), s.value.y(), s.value.z(), s.axial,
@@ -101,18 +99,18 @@ void write_ring(const std::string& dir, const post::Ring& ring, double time, con
   io::write_text(dir + "/ring_" + ring.name + ".csv", csv);
   const post::RingSample& least = ring.samples[ring.minimum];
   const std::string label = fmt::format("min {:.4g} Pa", least.magnitude);
-  report::LineChart chart;
+  study::LineChart chart;
   chart.title = fmt::format("Wall shear stress on ring {} at t = {:g} s", ring.name, time);
   chart.x_label = fmt::format("arc length ({}) from angle 0", unit);
   chart.y_label = "wall shear stress (Pa)";
   chart.series = {magnitude, axial, circumferential};
   chart.markers = {{label, least.arc_length, least.magnitude}};
-  report::write_svg_and_png(dir + "/ring_" + ring.name, report::svg(chart));
+  study::write_svg_and_png(dir + "/ring_" + ring.name, study::svg(chart));
   chart.x_label = "angle (degrees, counter-clockwise about the ring's normal)";
   chart.series = {magnitude_by_angle};
   chart.markers = {{label, least.angle, least.magnitude}};
   chart.y_from_zero = true;
-  report::write_svg_and_png(dir + "/ring_" + ring.name + "_angle", report::svg(chart));
+  study::write_svg_and_png(dir + "/ring_" + ring.name + "_angle", study::svg(chart));
 }
 
 Json ring_json(const post::Ring& ring) {
@@ -170,8 +168,8 @@ Command add_wss_command(CLI::App& parent) {
   add_common_options(*app, o->common);
   return {app, [o] {
             TerminalReporter reporter(o->common.quiet);
-            std::vector<post::RingRequest> rings;
-            for (const std::string& r : o->rings) rings.push_back(parse_ring(r));
+            std::vector<post::RingRequest> requests;
+            for (const std::string& r : o->rings) requests.push_back(parse_ring(r));
             std::vector<post::PointSpec> points;
             for (const std::string& p : o->points) points.push_back(parse_probe(p));
             std::optional<std::pair<double, double>> window;
@@ -180,9 +178,38 @@ Command add_wss_command(CLI::App& parent) {
             const std::string out = o->output.empty() ? o->results + "/wss" : o->output;
             const double time = o->time.value_or(series.frames.back().time);
             const std::string& unit = series.length_unit;
+
+            // Everything is computed first: a ring that misses the wall or a window without frames
+            // stops before the output folder is made.
             const post::WallField field = post::wall_at_time(series, time);
             reporter.info(fmt::format("wall at t = {:g} s: {} points, {} triangles (lengths in {}, wss in Pa)", time,
                                       field.mesh.num_points(), field.mesh.num_triangles(), unit));
+            std::vector<post::Ring> rings;
+            for (const post::RingSpec& spec : post::place_rings(field.mesh, requests, reporter))
+              rings.push_back(post::cut_ring(field.mesh, field.wss, spec));
+            const std::vector<post::PointProbe> probes = post::probe_points(field.mesh, field.wss, points);
+            std::optional<post::WssIndices> indices;
+            TriMesh indices_wall;  // the first frame's wall carries the indices
+            if (window) {
+              post::WssIndexAccumulator accumulator;
+              const double tolerance = 1e-9 * std::max(1.0, std::abs(window->second));
+              std::vector<const post::WallFrame*> chosen;
+              for (const post::WallFrame& f : series.frames)
+                if (f.time >= window->first - tolerance && f.time <= window->second + tolerance) chosen.push_back(&f);
+              if (chosen.size() < 2)
+                throw InputError(fmt::format("--indices {}: {} saved frame(s) in that window; the results hold "
+                                             "{:g} to {:g} s in {} frames",
+                                             o->indices, chosen.size(), series.frames.front().time,
+                                             series.frames.back().time, series.frames.size()));
+              for (size_t k = 0; k < chosen.size(); ++k) {
+                post::WallField frame = post::read_wall_frame(*chosen[k]);
+                accumulator.add(chosen[k]->time, frame.wss);
+                if (k == 0) indices_wall = std::move(frame.mesh);
+                reporter.progress("reading frames", double(k + 1) / chosen.size());
+              }
+              indices = accumulator.result();
+            }
+
             std::filesystem::create_directories(out);
             std::vector<double> magnitude(field.wss.size());
             for (size_t i = 0; i < magnitude.size(); ++i) magnitude[i] = field.wss[i].norm();
@@ -193,8 +220,7 @@ Command add_wss_command(CLI::App& parent) {
             std::vector<std::vector<Vec3>> lines;
             std::vector<double> line_magnitude;
             std::vector<Vec3> line_wss;
-            for (const post::RingSpec& spec : post::place_rings(field.mesh, rings, reporter)) {
-              const post::Ring ring = post::cut_ring(field.mesh, field.wss, spec);
+            for (const post::Ring& ring : rings) {
               write_ring(out, ring, time, unit);
               const post::RingSample& least = ring.samples[ring.minimum];
               reporter.info(fmt::format("ring {}: length {:.4g} {}{}, minimum {:.4g} Pa at s = {:.4g} {} (angle "
@@ -207,10 +233,10 @@ Command add_wss_command(CLI::App& parent) {
                                             : ""));
               ring_list.push_back(ring_json(ring));
               std::vector<Vec3> line;
-              for (const post::RingSample& s : ring.samples) {
-                line.push_back(s.point);
-                line_wss.push_back(s.value);
-                line_magnitude.push_back(s.magnitude);
+              for (const post::RingSample& sample : ring.samples) {
+                line.push_back(sample.point);
+                line_wss.push_back(sample.value);
+                line_magnitude.push_back(sample.magnitude);
               }
               lines.push_back(line);
             }
@@ -219,13 +245,13 @@ Command add_wss_command(CLI::App& parent) {
                                       {Field::vector("wss", line_wss), Field::scalar("wss_magnitude", line_magnitude)});
 
             Json point_list = Json::array();
-            if (!points.empty()) {
+            if (!probes.empty()) {
               std::string csv = fmt::format("# wall shear stress at t = {:g} s at the wall location nearest each "
                                             "point; lengths in {}, stresses in Pa\n",
                                             time, unit);
               csv += fmt::format("name,x_{0},y_{0},z_{0},distance_{0},wss_x_Pa,wss_y_Pa,wss_z_Pa,wss_magnitude_Pa\n",
                                  unit);
-              for (const post::PointProbe& p : post::probe_points(field.mesh, field.wss, points)) {
+              for (const post::PointProbe& p : probes) {
                 csv += fmt::format("{},{:.9g},{:.9g},{:.9g},{:.6g},{:.9g},{:.9g},{:.9g},{:.9g}\n", p.name, p.point.x(),
                                    p.point.y(), p.point.z(), p.distance, p.value.x(), p.value.y(), p.value.z(),
                                    p.value.norm());
@@ -243,41 +269,19 @@ Command add_wss_command(CLI::App& parent) {
               io::write_text(out + "/points.csv", csv);
             }
 
-            Json indices;
-            if (window) {
-              post::WssIndexAccumulator accumulator;
-              const double tolerance = 1e-9 * std::max(1.0, std::abs(window->second));
-              std::vector<const post::WallFrame*> chosen;
-              for (const post::WallFrame& f : series.frames)
-                if (f.time >= window->first - tolerance && f.time <= window->second + tolerance) chosen.push_back(&f);
-              TriMesh indices_wall;  // the first frame's wall carries the indices
-              for (size_t k = 0; k < chosen.size(); ++k) {
-                post::WallField frame = post::read_wall_frame(*chosen[k]);
-                accumulator.add(chosen[k]->time, frame.wss);
-                if (k == 0) indices_wall = std::move(frame.mesh);
-                reporter.progress("reading frames", double(k + 1) / chosen.size());
-              }
-              if (accumulator.samples() < 2)
-                throw InputError(fmt::format("--indices {}: {} saved frame(s) in that window; the results hold "
-                                             "{:g} to {:g} s in {} frames",
-                                             o->indices, accumulator.samples(), series.frames.front().time,
-                                             series.frames.back().time, series.frames.size()));
-              const post::WssIndices r = accumulator.result();
-              io::write_vtp(out + "/indices.vtp", indices_wall,
-                            {Field::scalar("tawss", r.tawss), Field::scalar("osi", r.osi), Field::scalar("rrt", r.rrt),
-                             Field::scalar("twssg", r.twssg)});
-              indices = {{"file", "indices.vtp"}, {"start_s", r.start}, {"end_s", r.end}, {"frames", r.samples},
-                         {"units", {{"tawss", "Pa"}, {"osi", "1"}, {"rrt", "1/Pa"}, {"twssg", "Pa/s"}}}};
-              reporter.info(fmt::format("indices.vtp: tawss, osi, rrt, twssg from {} frames, t = {:g} to {:g} s",
-                                        r.samples, r.start, r.end));
-            }
-
             Json j = {{"results", o->results},
                       {"time_s", time},
                       {"units", {{"length", unit}, {"wss", "Pa"}, {"time", "s"}}},
                       {"rings", ring_list},
                       {"points", point_list}};
-            if (!indices.is_null()) j["indices"] = indices;
+            if (indices) {
+              post::write_indices(out + "/indices.vtp", indices_wall, *indices);
+              j["indices"] = {{"file", "indices.vtp"}, {"start_s", indices->start}, {"end_s", indices->end},
+                              {"frames", indices->samples},
+                              {"units", {{"tawss", "Pa"}, {"osi", "1"}, {"rrt", "1/Pa"}, {"twssg", "Pa/s"}}}};
+              reporter.info(fmt::format("indices.vtp: tawss, osi, rrt, twssg from {} frames, t = {:g} to {:g} s",
+                                        indices->samples, indices->start, indices->end));
+            }
             io::write_text(out + "/wss.json", j.dump(2) + "\n");
             reporter.info(fmt::format("results in {}", out));
             if (o->common.json) print_json(j);

@@ -132,16 +132,12 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
     c.save_every = r.integer(time["save_every"], "time.save_every", c.save_every, 1);
   }
 
-  const io::TomlView boundaries = root["boundary"];
-  if (!boundaries || !boundaries.is_array_of_tables())
+  if (!root["boundary"] || !root["boundary"].is_array_of_tables())
     r.fail("boundary", "missing: one [[boundary]] table per tag of the mesh");
   std::set<std::string> seen;
-  int index = 0;
-  for (const toml::node& node : *boundaries.as_array()) {
-    const toml::table& table = *node.as_table();
-    const std::string where = fmt::format("boundary[{}]", index++);
-    r.known_keys(table, where, {"tag", "type", "profile", "flow", "waveform", "resistance", "backflow", "harmonics"});
-    const io::TomlView b(node);
+  for (const auto& [where, table] : r.tables(root, "boundary")) {
+    r.known_keys(*table, where, {"tag", "type", "profile", "flow", "waveform", "resistance", "backflow", "harmonics"});
+    const io::TomlView b(table);
     BoundaryCondition bc;
     bc.tag = r.text(b["tag"], where + ".tag", "");
     if (bc.tag.empty()) r.fail(where + ".tag", "missing: the mesh tag this condition applies to");

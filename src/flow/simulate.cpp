@@ -120,9 +120,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   const auto write_indices = [&]() {
     if (!writer || indices.samples() < 2) return;
     const post::WssIndices r = indices.result();
-    io::write_vtp(output_dir + "/indices.vtp", wall.mesh,
-                  {Field::scalar("tawss", r.tawss), Field::scalar("osi", r.osi), Field::scalar("rrt", r.rrt),
-                   Field::scalar("twssg", r.twssg)});
+    post::write_indices(output_dir + "/indices.vtp", wall.mesh, r);
     summary.indices_start = r.start;
     summary.indices_end = r.end;
     reporter.info(fmt::format("indices.vtp: tawss (Pa), osi, rrt (1/Pa), twssg (Pa/s) over t = {:g} to {:g} s, {} "
@@ -130,7 +128,8 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
                               r.start, r.end, r.samples));
   };
 
-  const auto save = [&](double time) {
+  // `computed`: this step's wall shear stress when the indices already needed it.
+  const auto save = [&](double time, const std::vector<Vec3>* computed) {
     const std::string name = fmt::format("{:06d}", summary.saved);
     if (!writer) {
       summary.saved += 1;
@@ -139,7 +138,8 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     std::vector<double> pressure = ns.pressure();
     io::write_vtu(output_dir + "/fluid_" + name + ".vtu", mesh,
                   {Field::vector("velocity", ns.velocity()), Field::scalar("pressure", pressure)});
-    const std::vector<Vec3> tau = post::wall_shear_stress(wall, all, si, ns.velocity(), fc.viscosity);
+    const std::vector<Vec3> tau =
+        computed ? *computed : post::wall_shear_stress(wall, all, si, ns.velocity(), fc.viscosity);
     std::vector<double> magnitude(tau.size());
     for (size_t i = 0; i < tau.size(); ++i) magnitude[i] = tau[i].norm();
     io::write_vtp(output_dir + "/wall_" + name + ".vtp", wall.mesh,
@@ -167,7 +167,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
       summary.linear_iterations = r.linear_iterations;
       log_step(r);
       summary.solver = ns.solver_description();
-      save(0.0);
+      save(0.0, nullptr);
     } else {
       const int steps = static_cast<int>(std::ceil(fc.end / fc.dt - 1e-9));
       reporter.info(fmt::format("{} steps of {:g} s to t = {:g} s, {} dofs", steps, fc.dt, fc.end, ns.dofs()));
@@ -177,9 +177,13 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
         summary.linear_iterations += r.linear_iterations;
         log_step(r);
         if (k == 0) summary.solver = ns.solver_description();
-        if (r.step % fc.save_every == 0 || k + 1 == steps) save(r.time);
-        if (writer && r.time >= window_start - 0.5 * fc.dt)
-          indices.add(r.time, post::wall_shear_stress(wall, all, si, ns.velocity(), fc.viscosity));
+        std::vector<Vec3> tau;
+        const bool in_window = writer && r.time >= window_start - 0.5 * fc.dt;
+        if (in_window) {
+          tau = post::wall_shear_stress(wall, all, si, ns.velocity(), fc.viscosity);
+          indices.add(r.time, tau);
+        }
+        if (r.step % fc.save_every == 0 || k + 1 == steps) save(r.time, in_window ? &tau : nullptr);
         reporter.progress("time steps", double(k + 1) / steps);
       }
     }

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -66,6 +68,12 @@ std::string read_file(const std::string& path) {
   in.read(bytes.data(), size);
   if (!in) throw InputError(fmt::format("{}: read failed after {} bytes", path, in.gcount()));
   return bytes;
+}
+
+bool is_file_name_safe(const std::string& name) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+  });
 }
 
 }  // namespace vesselmesh::io

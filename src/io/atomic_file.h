@@ -19,4 +19,7 @@ void write_text(const std::string& path, const std::string& text);
 // Reads a whole file into memory. Throws InputError naming the file when it cannot be read.
 std::string read_file(const std::string& path);
 
+// A name that may become part of a file name: letters, digits, '_', '-', '.' (not empty).
+bool is_file_name_safe(const std::string& name);
+
 }  // namespace vesselmesh::io

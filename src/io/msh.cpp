@@ -54,7 +54,16 @@ EntityGroup entity_group(int dim, int entity) {
   if (g.grouped) gmsh::model::getPhysicalName(dim, g.tag, g.name);
   return g;
 }
+
+// The session's model as MSH 4.1 text (physical groups only), written atomically.
+void write_model(const std::string& path) {
+  gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+  gmsh::option::setNumber("Mesh.Binary", 0);
+  gmsh::option::setNumber("Mesh.SaveAll", 0);
+  write_atomically(path, [&](const std::string& temporary) { gmsh::write(temporary); });
 }
+
+}  // namespace
 
 void write_msh(const std::string& path, const TriMesh& mesh,
                const std::map<int, std::string>& label_names) {
@@ -90,10 +99,7 @@ void write_msh(const std::string& path, const TriMesh& mesh,
           name != label_names.end() ? name->second
                                     : (mesh.has_labels() ? fmt::format("label_{}", distinct[k]) : "surface"));
     }
-    gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
-    gmsh::option::setNumber("Mesh.Binary", 0);
-    gmsh::option::setNumber("Mesh.SaveAll", 0);
-    write_atomically(path, [&](const std::string& temporary) { gmsh::write(temporary); });
+    write_model(path);
   });
 }
 
@@ -188,10 +194,7 @@ void write_msh(const std::string& path, const TetMesh& mesh) {
     if (!element_tags.empty()) gmsh::model::mesh::addElementsByType(1, kPrism6, element_tags, element_nodes);
     gmsh::model::addPhysicalGroup(3, {1}, mesh.volume_tag);
     gmsh::model::setPhysicalName(3, mesh.volume_tag, mesh.volume_name);
-    gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
-    gmsh::option::setNumber("Mesh.Binary", 0);
-    gmsh::option::setNumber("Mesh.SaveAll", 0);
-    write_atomically(path, [&](const std::string& temporary) { gmsh::write(temporary); });
+    write_model(path);
   });
 }
 

@@ -85,6 +85,16 @@ std::vector<std::string> TomlReader::strings(const TomlView& node, const std::st
   return out;
 }
 
+std::vector<TomlReader::Entry> TomlReader::tables(const toml::table& root, const std::string& key) const {
+  std::vector<Entry> entries;
+  const toml::node* node = root.get(key);
+  if (!node) return entries;
+  const toml::array* array = node->as_array();
+  if (!array || !array->is_array_of_tables()) fail(key, fmt::format("expected [[{}]] tables", key));
+  for (size_t k = 0; k < array->size(); ++k) entries.push_back({fmt::format("{}[{}]", key, k), (*array)[k].as_table()});
+  return entries;
+}
+
 void TomlReader::known_keys(const toml::table& table, const std::string& where,
                             std::initializer_list<const char*> keys) const {
   for (const auto& [key, value] : table) {

@@ -32,6 +32,13 @@ struct TomlReader {
   // An array of three numbers.
   Vec3 point(const TomlView& node, const std::string& key) const;
   std::vector<std::string> strings(const TomlView& node, const std::string& key) const;
+  // The [[key]] tables of `root` in order, each with its name for messages ("key[i]"); none
+  // when the key is absent; fails when it is not an array of tables.
+  struct Entry {
+    std::string where;
+    const toml::table* table;
+  };
+  std::vector<Entry> tables(const toml::table& root, const std::string& key) const;
   // Fails on a key of `table` not in `keys`, listing those.
   void known_keys(const toml::table& table, const std::string& where, std::initializer_list<const char*> keys) const;
 };

@@ -1,5 +1,6 @@
 #include "post/indices.h"
 
+#include "io/vtk_formats.h"
 #include "mesh/error.h"
 
 #include <fmt/format.h>
@@ -62,6 +63,12 @@ WssIndices WssIndexAccumulator::result() const {
     r.twssg[i] = change_[i] / span;
   }
   return r;
+}
+
+void write_indices(const std::string& path, const TriMesh& wall, const WssIndices& indices) {
+  io::write_vtp(path, wall,
+                {Field::scalar("tawss", indices.tawss), Field::scalar("osi", indices.osi),
+                 Field::scalar("rrt", indices.rrt), Field::scalar("twssg", indices.twssg)});
 }
 
 }  // namespace vesselmesh::post

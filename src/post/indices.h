@@ -12,6 +12,7 @@
 
 #include "mesh/trimesh.h"
 
+#include <string>
 #include <vector>
 
 namespace vesselmesh::post {
@@ -36,5 +37,9 @@ class WssIndexAccumulator {
   std::vector<Vec3> last_, integral_;
   std::vector<double> magnitude_integral_, change_;
 };
+
+// The indices as VTK PolyData on the wall, point data tawss (Pa), osi, rrt (1/Pa), twssg (Pa/s),
+// written atomically.
+void write_indices(const std::string& path, const TriMesh& wall, const WssIndices& indices);
 
 }  // namespace vesselmesh::post

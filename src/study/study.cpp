@@ -125,43 +125,27 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
   }
   const auto named = [&](const toml::table& t, const std::string& where) {
     const std::string name = r.text(io::TomlView(&t)["name"], where + ".name", "");
-    const bool ok = !name.empty() && std::all_of(name.begin(), name.end(), [](char ch) {
-      return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.';
-    });
-    if (!ok) r.fail(where + ".name", "missing or not made of letters, digits, '_', '-', '.' (it names files)");
+    if (!io::is_file_name_safe(name))
+      r.fail(where + ".name", "missing or not made of letters, digits, '_', '-', '.' (it names files)");
     return name;
   };
-  if (root["ring"]) {
-    const toml::array* rings = root["ring"].as_array();
-    if (!rings) r.fail("ring", "expected [[ring]] tables");
-    for (size_t k = 0; k < rings->size(); ++k) {
-      const std::string where = fmt::format("ring[{}]", k);
-      const toml::table* t = (*rings)[k].as_table();
-      if (!t) r.fail(where, "expected a table");
-      r.known_keys(*t, where, {"name", "point", "normal", "reference"});
-      const io::TomlView v(t);
-      post::RingRequest request;
-      request.spec.name = named(*t, where);
-      request.spec.point = r.point(v["point"], where + ".point");
-      request.on_centerline = !v["normal"];
-      if (v["normal"]) {
-        request.spec.normal = r.point(v["normal"], where + ".normal");
-        if (!(request.spec.normal.norm() > 0.0)) r.fail(where + ".normal", "is zero");
-      }
-      if (v["reference"]) request.spec.reference = r.point(v["reference"], where + ".reference");
-      c.rings.push_back(request);
+  for (const auto& [where, t] : r.tables(root, "ring")) {
+    r.known_keys(*t, where, {"name", "point", "normal", "reference"});
+    const io::TomlView v(t);
+    post::RingRequest request;
+    request.spec.name = named(*t, where);
+    request.spec.point = r.point(v["point"], where + ".point");
+    request.on_centerline = !v["normal"];
+    if (v["normal"]) {
+      request.spec.normal = r.point(v["normal"], where + ".normal");
+      if (!(request.spec.normal.norm() > 0.0)) r.fail(where + ".normal", "is zero");
     }
+    if (v["reference"]) request.spec.reference = r.point(v["reference"], where + ".reference");
+    c.rings.push_back(request);
   }
-  if (root["point"]) {
-    const toml::array* points = root["point"].as_array();
-    if (!points) r.fail("point", "expected [[point]] tables");
-    for (size_t k = 0; k < points->size(); ++k) {
-      const std::string where = fmt::format("point[{}]", k);
-      const toml::table* t = (*points)[k].as_table();
-      if (!t) r.fail(where, "expected a table");
-      r.known_keys(*t, where, {"name", "point"});
-      c.points.push_back({named(*t, where), r.point(io::TomlView(t)["point"], where + ".point")});
-    }
+  for (const auto& [where, t] : r.tables(root, "point")) {
+    r.known_keys(*t, where, {"name", "point"});
+    c.points.push_back({named(*t, where), r.point(io::TomlView(t)["point"], where + ".point")});
   }
   if (c.rings.empty() && c.points.empty())
     r.fail("ring", "give at least one [[ring]] or [[point]]: the study compares WSS there");
@@ -197,6 +181,9 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
   const centerline::Centerlines lines = centerline::extract(surface, {}, reporter);
   const centerline::DistanceMap distance = centerline::distance_map(surface, lines);
   result.rings = post::place_rings(surface, config.rings, reporter);
+  // A ring plane that misses the vessel is found now, not after every flow has run.
+  for (const post::RingSpec& spec : result.rings)
+    post::cut_ring(surface, std::vector<Vec3>(surface.points.size(), Vec3::Zero()), spec);
   result.seconds["input analysis"] = since(step);
 
   // What every mesh depends on: the input's bytes, the options, the version.

@@ -2,9 +2,9 @@
 
 #include "io/atomic_file.h"
 #include "post/wall_series.h"
-#include "report/chart.h"
-#include "report/picture.h"
-#include "report/raster.h"
+#include "study/chart.h"
+#include "study/picture.h"
+#include "study/raster.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -33,15 +33,15 @@ struct Document {
 
   void heading(const std::string& text, int level = 2) {
     markdown += std::string(level, '#') + " " + text + "\n\n";
-    html += fmt::format("<h{0}>{1}</h{0}>\n", level, report::xml_escape(text));
+    html += fmt::format("<h{0}>{1}</h{0}>\n", level, xml_escape(text));
   }
   void paragraph(const std::string& text) {
     markdown += text + "\n\n";
-    html += "<p>" + report::xml_escape(text) + "</p>\n";
+    html += "<p>" + xml_escape(text) + "</p>\n";
   }
   void code(const std::string& text) {
     markdown += "```\n" + text + (text.empty() || text.back() == '\n' ? "" : "\n") + "```\n\n";
-    html += "<pre>" + report::xml_escape(text) + "</pre>\n";
+    html += "<pre>" + xml_escape(text) + "</pre>\n";
   }
   void table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows) {
     markdown += "|";
@@ -50,14 +50,14 @@ struct Document {
     for (size_t k = 0; k < header.size(); ++k) markdown += " --- |";
     markdown += "\n";
     html += "<table>\n<tr>";
-    for (const std::string& h : header) html += "<th>" + report::xml_escape(h) + "</th>";
+    for (const std::string& h : header) html += "<th>" + xml_escape(h) + "</th>";
     html += "</tr>\n";
     for (const auto& row : rows) {
       markdown += "|";
       html += "<tr>";
       for (const std::string& cell : row) {
         markdown += " " + cell + " |";
-        html += "<td>" + report::xml_escape(cell) + "</td>";
+        html += "<td>" + xml_escape(cell) + "</td>";
       }
       markdown += "\n";
       html += "</tr>\n";
@@ -67,10 +67,10 @@ struct Document {
   }
   // Writes figures/NAME.svg and .png; the Markdown links the PNG, the HTML holds the SVG.
   void figure(const std::string& name, const std::string& svg, const std::string& caption) {
-    report::write_svg_and_png(folder + "/figures/" + name, svg);
+    write_svg_and_png(folder + "/figures/" + name, svg);
     markdown += fmt::format("![{0}](figures/{1}.png)\n\n*{0}* ([SVG](figures/{1}.svg))\n\n", caption, name);
     const size_t at = svg.find("<svg");
-    html += "<figure>" + svg.substr(at == std::string::npos ? 0 : at) + "<figcaption>" + report::xml_escape(caption) +
+    html += "<figure>" + svg.substr(at == std::string::npos ? 0 : at) + "<figcaption>" + xml_escape(caption) +
             "</figcaption></figure>\n";
   }
 };
@@ -117,7 +117,7 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
     const std::string& ring = result.rings[r].name;
     doc.heading(fmt::format("WSS along ring {}", ring));
     for (const bool series : {true, false}) {
-      report::LineChart chart;
+      LineChart chart;
       chart.title = fmt::format("Ring {}: {} (t = {:g} s)", ring, series ? "refinement series" : "compared meshes",
                                 result.time);
       chart.x_label = fmt::format("arc length ({}) from angle 0", unit);
@@ -125,14 +125,14 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
       chart.y_from_zero = true;
       for (size_t m = 0; m < meshes.size(); ++m) {
         if (meshes[m].series != series && static_cast<int>(m) != result.reference) continue;
-        report::Series s{meshes[m].name, {}, {}, static_cast<int>(m) == result.reference && !series};
+        Series s{meshes[m].name, {}, {}, static_cast<int>(m) == result.reference && !series};
         for (const post::RingSample& sample : meshes[m].rings[r].samples) {
           s.x.push_back(sample.arc_length);
           s.y.push_back(sample.magnitude);
         }
         chart.series.push_back(s);
       }
-      doc.figure(fmt::format("ring_{}_{}", ring, series ? "series" : "meshes"), report::svg(chart),
+      doc.figure(fmt::format("ring_{}_{}", ring, series ? "series" : "meshes"), svg(chart),
                  fmt::format("WSS magnitude along ring {}, {}", ring,
                              series ? "uniform refinement series" : "the compared meshes against the reference"));
     }
@@ -141,7 +141,7 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
   // Figs. 12-14: relative differences against the reference.
   Json numbers = Json::array();
   const auto difference_chart = [&](const std::string& title) {
-    report::BarChart chart;
+    BarChart chart;
     chart.title = title;
     chart.y_label = "difference from the reference (%)";
     for (const MeshRun& m : meshes)
@@ -150,12 +150,12 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
   };
   if (!result.rings.empty()) {
     doc.heading("Minimum WSS on each ring against the reference");
-    report::BarChart chart = difference_chart("Relative difference of the minimum WSS on each ring");
+    BarChart chart = difference_chart("Relative difference of the minimum WSS on each ring");
     std::vector<std::vector<std::string>> table;
     for (size_t r = 0; r < result.rings.size(); ++r) {
       const post::Ring& ref_ring = reference.rings[r];
       const double ref_min = ref_ring.samples[ref_ring.minimum].magnitude;
-      report::BarSeries s{"ring " + result.rings[r].name, {}};
+      BarSeries s{"ring " + result.rings[r].name, {}};
       for (const MeshRun& m : meshes) {
         if (&m == &reference) continue;
         const post::RingSample& least = m.rings[r].samples[m.rings[r].minimum];
@@ -169,17 +169,17 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
       }
       chart.series.push_back(s);
     }
-    doc.figure("ring_minimum_differences", report::svg(chart),
+    doc.figure("ring_minimum_differences", svg(chart),
                "Relative difference of each ring's minimum WSS from the reference's, per mesh");
     doc.table({"ring", "mesh", "minimum WSS (Pa)", "reference (Pa)", "at angle (deg)", "difference"}, table);
   }
   if (!config.points.empty()) {
     doc.heading("WSS at the points against the reference");
-    report::BarChart chart = difference_chart("Relative difference of the WSS at each point");
+    BarChart chart = difference_chart("Relative difference of the WSS at each point");
     std::vector<std::vector<std::string>> table;
     for (size_t p = 0; p < config.points.size(); ++p) {
       const double ref = reference.points[p].value.norm();
-      report::BarSeries s{"point " + config.points[p].name, {}};
+      BarSeries s{"point " + config.points[p].name, {}};
       for (const MeshRun& m : meshes) {
         if (&m == &reference) continue;
         const double v = m.points[p].value.norm(), d = relative_difference(v, ref);
@@ -190,7 +190,7 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
       }
       chart.series.push_back(s);
     }
-    doc.figure("point_differences", report::svg(chart), "Relative difference of the WSS at each point, per mesh");
+    doc.figure("point_differences", svg(chart), "Relative difference of the WSS at each point, per mesh");
     doc.table({"point", "mesh", "WSS (Pa)", "reference (Pa)", "difference"}, table);
   }
 
@@ -214,26 +214,26 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
       high = sorted[k];
     }
   }
-  const Vec3 broadside = report::broadside_view(walls.back().mesh);
+  const Vec3 broadside = broadside_view(walls.back().mesh);
   for (size_t k = 0; k + 1 < pictured.size(); ++k) {
-    report::PictureOptions o;
+    PictureOptions o;
     o.title = fmt::format("{}: {} triangles", pictured[k]->name, pictured[k]->surface_triangles);
     o.view = broadside;
-    doc.figure("mesh_" + pictured[k]->name, report::surface_svg(walls[k].mesh, nullptr, o),
+    doc.figure("mesh_" + pictured[k]->name, surface_svg(walls[k].mesh, nullptr, o),
                fmt::format("The {} surface mesh", pictured[k]->name));
   }
   doc.heading(fmt::format("The WSS field at t = {:g} s", result.time));
   for (size_t k = 0; k < pictured.size(); ++k) {
     std::vector<double> magnitude;
     for (const Vec3& t : walls[k].wss) magnitude.push_back(t.norm());
-    report::PictureOptions o;
+    PictureOptions o;
     o.title = fmt::format("WSS on {} (t = {:g} s)", pictured[k]->name, result.time);
     o.view = broadside;
     o.edges = false;
     o.scalar_label = "|wss| (Pa)";
     o.low = 0.0;
     o.high = high > 0.0 ? high : 1.0;
-    doc.figure("wss_" + pictured[k]->name, report::surface_svg(walls[k].mesh, &magnitude, o),
+    doc.figure("wss_" + pictured[k]->name, surface_svg(walls[k].mesh, &magnitude, o),
                fmt::format("WSS magnitude on the {} mesh (colours 0 to the reference's 99th percentile, {:.3g} Pa)",
                            pictured[k]->name, o.high));
   }

@@ -545,6 +545,13 @@ TEST(Cli, WssReadsRingsPointsAndIndicesFromResults) {
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.err.find("is not a point"), std::string::npos) << bad.err;
   EXPECT_FALSE(std::filesystem::exists(tmp.path("bad")));
+  const RunResult miss = run({"wss", tmp.path("out"), "-o", tmp.path("miss"), "--ring", "far:0,0,50:0,0,1"});
+  EXPECT_EQ(miss.code, 2);
+  EXPECT_NE(last_line(miss.err).find("ring far"), std::string::npos) << miss.err;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path("miss")));  // nothing written, not even the wall
+  const RunResult window = run({"wss", tmp.path("out"), "-o", tmp.path("window"), "--indices", "0:1x"});
+  EXPECT_EQ(window.code, 2);
+  EXPECT_FALSE(std::filesystem::exists(tmp.path("window")));
 }
 
 TEST(Cli, DemoWritesItsOutputs) {

@@ -114,6 +114,20 @@ TEST(StudyFile, NamesTheKeyOfEveryMistake) {
   EXPECT_NEAR(relative_difference(-0.9, -1.0), 10.0, 1e-9);  // against |reference|
 }
 
+TEST(Study, ARingMissingTheVesselStopsBeforeAnyMesh) {
+  test::TemporaryFolder tmp;
+  test::write_bytes(tmp.path("flow.toml"), kCase);
+  test::write_bytes(tmp.path("study.toml"),
+                    study_text("[[ring]]\nname = \"beyond\"\npoint = [0, 0, -90]\nnormal = [0, 0, 1]\n"));
+  try {
+    run_study(read_study(tmp.path("study.toml")), tmp.path("out"));
+    FAIL() << "a plane beyond the vessel";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("ring beyond"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(tmp.path("out/uniform")));
+}
+
 TEST(StudyFile, TheExampleStudyReads) {
   const StudyConfig c = read_study(std::string(VESSELMESH_EXAMPLES_DIR) + "/bifurcation_study.toml");
   EXPECT_TRUE(std::filesystem::exists(c.surface)) << c.surface;

@@ -1,4 +1,4 @@
-#include "report/raster.h"
+#include "study/raster.h"
 
 #include "io/atomic_file.h"
 #include "mesh/error.h"
@@ -10,7 +10,7 @@
 #include <cmath>
 #include <memory>
 
-namespace vesselmesh::report {
+namespace vesselmesh::study {
 
 std::string png_from_svg(const std::string& svg, double scale) {
   GError* error = nullptr;
@@ -50,4 +50,4 @@ void write_svg_and_png(const std::string& stem, const std::string& svg, double s
   io::write_text(stem + ".png", png_from_svg(svg, scale));
 }
 
-}  // namespace vesselmesh::report
+}  // namespace vesselmesh::study

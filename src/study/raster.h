@@ -3,7 +3,7 @@
 
 #include <string>
 
-namespace vesselmesh::report {
+namespace vesselmesh::study {
 
 // The SVG document rendered at `scale` times its own size, as PNG bytes. Throws InputError
 // when librsvg cannot read the document.
@@ -12,4 +12,4 @@ std::string png_from_svg(const std::string& svg, double scale = 2.0);
 // Writes `stem`.svg and `stem`.png (both atomically).
 void write_svg_and_png(const std::string& stem, const std::string& svg, double scale = 2.0);
 
-}  // namespace vesselmesh::report
+}  // namespace vesselmesh::study

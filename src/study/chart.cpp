@@ -1,4 +1,4 @@
-#include "report/chart.h"
+#include "study/chart.h"
 
 #include "mesh/error.h"
 
@@ -9,7 +9,7 @@
 #include <cmath>
 #include <limits>
 
-namespace vesselmesh::report {
+namespace vesselmesh::study {
 namespace {
 
 constexpr std::array<const char*, 8> kColours = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
@@ -209,4 +209,4 @@ std::string svg(const BarChart& chart) {
   return out + "</svg>\n";
 }
 
-}  // namespace vesselmesh::report
+}  // namespace vesselmesh::study

@@ -1,11 +1,11 @@
-#include "report/chart.h"
-#include "report/raster.h"
+#include "study/chart.h"
+#include "study/raster.h"
 
 #include "mesh/error.h"
 
 #include <gtest/gtest.h>
 
-namespace vesselmesh::report {
+namespace vesselmesh::study {
 namespace {
 
 TEST(Chart, TicksAreRoundAndCoverTheRange) {
@@ -63,4 +63,4 @@ TEST(Chart, RendersToPng) {
 }
 
 }  // namespace
-}  // namespace vesselmesh::report
+}  // namespace vesselmesh::study

@@ -1,7 +1,7 @@
-#include "report/picture.h"
+#include "study/picture.h"
 
 #include "mesh/error.h"
-#include "report/chart.h"
+#include "study/chart.h"
 
 #include <Eigen/Eigenvalues>
 #include <fmt/format.h>
@@ -11,7 +11,7 @@
 #include <cmath>
 #include <numeric>
 
-namespace vesselmesh::report {
+namespace vesselmesh::study {
 namespace {
 
 // Viridis at nine stops.
@@ -137,4 +137,4 @@ std::string surface_svg(const TriMesh& mesh, const std::vector<double>* scalar, 
   return out + "</svg>\n";
 }
 
-}  // namespace vesselmesh::report
+}  // namespace vesselmesh::study

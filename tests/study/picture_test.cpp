@@ -1,11 +1,11 @@
-#include "report/picture.h"
+#include "study/picture.h"
 
 #include "mesh/error.h"
 #include "synth/shapes.h"
 
 #include <gtest/gtest.h>
 
-namespace vesselmesh::report {
+namespace vesselmesh::study {
 namespace {
 
 TEST(Picture, LooksAtAPipeBroadside) {
@@ -37,4 +37,4 @@ TEST(Picture, DrawsEveryTriangleAndAColourBar) {
 }
 
 }  // namespace
-}  // namespace vesselmesh::report
+}  // namespace vesselmesh::study

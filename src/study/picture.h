@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace vesselmesh::report {
+namespace vesselmesh::study {
 
 struct PictureOptions {
   std::string title;
@@ -28,4 +28,4 @@ Vec3 broadside_view(const TriMesh& mesh);
 // `scalar`: one value per point, or null for a grey mesh.
 std::string surface_svg(const TriMesh& mesh, const std::vector<double>* scalar, const PictureOptions& options);
 
-}  // namespace vesselmesh::report
+}  // namespace vesselmesh::study

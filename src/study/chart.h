@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace vesselmesh::report {
+namespace vesselmesh::study {
 
 struct Series {
   std::string name;
@@ -51,4 +51,4 @@ std::string xml_escape(const std::string& text);
 // Round tick positions covering [low, high], about `count` of them.
 std::vector<double> nice_ticks(double low, double high, int count = 6);
 
-}  // namespace vesselmesh::report
+}  // namespace vesselmesh::study
