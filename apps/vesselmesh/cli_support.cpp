@@ -1,5 +1,6 @@
 #include "cli_support.h"
 
+#include "io/atomic_file.h"
 #include "mesh/error.h"
 
 #include <fmt/format.h>
@@ -115,6 +116,30 @@ Vec3 parse_point(const std::string& text, const char* option) {
   }
   if (v.size() != 3) throw fail();
   return Vec3(v[0], v[1], v[2]);
+}
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  for (;;) {
+    const size_t at = text.find(separator, start);
+    parts.push_back(text.substr(start, at == std::string::npos ? std::string::npos : at - start));
+    if (at == std::string::npos) return parts;
+    start = at + 1;
+  }
+}
+
+std::string checked_name(const std::string& name, const std::string& text, const char* option) {
+  if (!io::is_file_name_safe(name))
+    throw OptionError(fmt::format("{} '{}': the name must be letters, digits, '_', '-' or '.' (it names files)",
+                                  option, text));
+  return name;
+}
+
+std::pair<std::string, Vec3> parse_named_point(const std::string& text, const char* option) {
+  const std::vector<std::string> parts = split(text, ':');
+  if (parts.size() != 2) throw OptionError(fmt::format("{} '{}': give NAME:x,y,z", option, text));
+  return {checked_name(parts[0], text, option), parse_point(parts[1], option)};
 }
 
 }  // namespace vesselmesh::cli

@@ -47,6 +47,11 @@ double round_to(double value, int digits = 7);
 
 // "x,y,z" as a point (or a direction); OptionError naming `option` otherwise.
 Vec3 parse_point(const std::string& text, const char* option);
+std::vector<std::string> split(const std::string& text, char separator);
+// A name made of letters, digits, '_', '-', '.' (it names files), else OptionError quoting `text`.
+std::string checked_name(const std::string& name, const std::string& text, const char* option);
+// NAME:x,y,z
+std::pair<std::string, Vec3> parse_named_point(const std::string& text, const char* option);
 
 // Prints JSON to stdout (pretty, one document).
 void print_json(const Json& json);

@@ -3,6 +3,7 @@
 
 #include "mesh/error.h"
 #include "mesh/statistics.h"
+#include "synth/anastomosis.h"
 #include "synth/bifurcation.h"
 #include "synth/shapes.h"
 
@@ -82,6 +83,80 @@ Command shape_command(CLI::App& parent, const std::string& name, const std::stri
           }};
 }
 
+Json point_json(const Vec3& p) { return {round_to(p.x()), round_to(p.y()), round_to(p.z())}; }
+
+// The anastomosis also says where its ends, heel, toe, floor and rings are: the case and the
+// study name them.
+Command add_anastomosis(CLI::App& parent) {
+  CLI::App* app = parent.add_subcommand(
+      "anastomosis",
+      "Distal end-to-side anastomosis (femoro-popliteal bypass): the graft joins the host artery's side at --angle; "
+      "the host upstream is a blind stump. Host along +x (distal), graft above it in the xz plane. Ends: inlet (graft), "
+      "outlet (distal host), stump (proximal host); prints them with the heel, toe, floor and the two rings' planes");
+  struct State {
+    synth::AnastomosisOptions shape;
+    ShapeCommon common;
+  };
+  auto state = std::make_shared<State>();
+  synth::AnastomosisOptions& o = state->shape;
+  app->add_option("--host-radius", o.host_radius, "Host artery radius (mm)")->capture_default_str();
+  app->add_option("--graft-radius", o.graft_radius, "Graft radius (mm)")->capture_default_str();
+  app->add_option("--angle", o.angle_deg, "Angle between the graft's axis at the junction and the distal host (deg)")
+      ->capture_default_str();
+  app->add_option("--graft-bend", o.graft_bend_deg,
+                  "Turn of the graft above the junction, towards the host's direction (deg; 0: straight graft)")
+      ->capture_default_str();
+  app->add_option("--graft-bend-radius", o.graft_bend_radius, "Radius of that turn's centerline (mm; 0: 4 graft radii)")
+      ->capture_default_str();
+  app->add_option("--graft-length", o.graft_length, "Straight graft from the turn to the inlet (mm)")->capture_default_str();
+  app->add_option("--fillet", o.fillet, "Width of the smooth blend at heel, toe and sides (mm; 0: a crease)")
+      ->capture_default_str();
+  app->add_option("--stump-length", o.stump_length, "Host from the heel back to the stump's end (mm)")->capture_default_str();
+  app->add_option("--outlet-length", o.outlet_length, "Host from the toe to the outlet (mm)")->capture_default_str();
+  app->add_option("--tortuosity", o.tortuosity,
+                  "Amplitude of an S-bend of the distal host out of the graft's plane (mm; 0: straight)")
+      ->capture_default_str();
+  add_shape_options(*app, state->common, o.resolution);
+  return {app, [state] {
+            synth::AnastomosisOptions options = state->shape;
+            const ShapeCommon& c = state->common;
+            options.resolution = c.resolution, options.jitter = c.jitter, options.seed = c.seed;
+            const synth::AnastomosisLandmarks l = synth::anastomosis_landmarks(options);
+            TerminalReporter reporter(c.common.quiet);
+            reporter.info("building the anastomosis: implicit surface, flying edges, relaxation, three cuts");
+            const TriMesh mesh = synth::anastomosis(options);
+            io::surface_format(c.output);
+            io::write_surface(c.output, mesh);
+            const mesh::Statistics st = mesh::statistics(mesh);
+            if (c.common.json) {
+              Json ends = Json::array();
+              for (const synth::NamedEnd& e : l.ends)
+                ends.push_back({{"name", e.name}, {"center", point_json(e.end.center)},
+                                {"normal", point_json(e.end.normal)}, {"radius", round_to(e.end.radius)}});
+              print_json({{"shape", "anastomosis"}, {"output", c.output}, {"units", "mm"}, {"points", st.points},
+                          {"triangles", st.triangles}, {"boundary_loops", st.boundary_loops},
+                          {"area", round_to(st.area)}, {"edge_length", {{"min", round_to(st.edge_length.min)},
+                                                                        {"mean", round_to(st.edge_length.mean)},
+                                                                        {"max", round_to(st.edge_length.max)}}},
+                          {"min_angle_deg", round_to(st.min_angle.min)}, {"ends", ends},
+                          {"heel", point_json(l.heel)}, {"toe", point_json(l.toe)}, {"floor", point_json(l.floor)},
+                          {"ring1", {{"point", point_json(l.ring1_point)}, {"normal", point_json(l.ring1_normal)}}},
+                          {"ring2", {{"point", point_json(l.ring2_point)}, {"normal", point_json(l.ring2_normal)}}}});
+              return 0;
+            }
+            reporter.info(fmt::format("wrote anastomosis ({} points, {} triangles, mean edge {:.3g} mm) to {}", st.points,
+                                      st.triangles, st.edge_length.mean, c.output));
+            auto xyz = [](const Vec3& p) { return fmt::format("{:.4g},{:.4g},{:.4g}", p.x(), p.y(), p.z()); };
+            for (const synth::NamedEnd& e : l.ends)
+              reporter.info(fmt::format("  end {:7} centre {}  normal {}  radius {:.4g} mm", e.name, xyz(e.end.center),
+                                        xyz(e.end.normal), e.end.radius));
+            reporter.info(fmt::format("  heel {}  toe {}  floor {} (mm)", xyz(l.heel), xyz(l.toe), xyz(l.floor)));
+            reporter.info(fmt::format("  ring 1 (heel-toe) point {} normal {}", xyz(l.ring1_point), xyz(l.ring1_normal)));
+            reporter.info(fmt::format("  ring 2 (distal host) point {} normal {}", xyz(l.ring2_point), xyz(l.ring2_normal)));
+            return 0;
+          }};
+}
+
 }  // namespace
 
 Command add_synth_command(CLI::App& parent) {
@@ -153,10 +228,11 @@ Command add_synth_command(CLI::App& parent) {
         a.add_option("--blend", o.blend, "Radius of the smooth blend at the junction (mm)")->capture_default_str();
       },
       with_common_options(&synth::bifurcation)));
+  shapes.push_back(add_anastomosis(*app));
   return {app, [shapes] {
             for (const Command& shape : shapes)
               if (shape.app->parsed()) return shape.action();
-            throw OptionError("name a shape: sphere, cylinder, torus, ellipsoid, bend or bifurcation");
+            throw OptionError("name a shape: sphere, cylinder, torus, ellipsoid, bend, bifurcation or anastomosis");
           }};
 }
 

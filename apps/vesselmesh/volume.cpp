@@ -12,7 +12,6 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <sstream>
 
 namespace vesselmesh::cli {
 namespace {
@@ -25,13 +24,6 @@ VolumeFormat volume_format(const std::string& path) {
   if (extension == ".vtu") return VolumeFormat::vtu;
   if (extension == ".msh") return VolumeFormat::msh;
   throw OptionError(fmt::format("{}: a volume mesh is written as .vtu (VTK, with layer data) or .msh (Gmsh 4.1)", path));
-}
-
-std::vector<std::string> split_names(const std::string& text) {
-  std::vector<std::string> names;
-  std::stringstream stream(text);
-  for (std::string name; std::getline(stream, name, ',');) names.push_back(name);
-  return names;
 }
 
 Json quality_json(const volume::VolumeQuality& q) {
@@ -98,6 +90,7 @@ Command add_volume_command(CLI::App& parent) {
   struct Options {
     SurfaceInput surface;
     std::string output, algorithm = "delaunay", end_names;
+    std::vector<std::string> ends;
     volume::VolumeOptions volume;
     CommonOptions common;
   };
@@ -126,13 +119,20 @@ Command add_volume_command(CLI::App& parent) {
                                               "(default: the largest)");
   app->add_option("--end-names", o->end_names,
                   "Names of all ends, comma-separated, in the order of 'vesselmesh info' (instead of inlet, outlet_1, ...)");
+  app->add_option("--end", o->ends,
+                  "NAME:x,y,z names the end whose centre is nearest the point (repeat it for every end; instead of "
+                  "--inlet and --end-names, and the same whatever order the ends come in)");
   app->add_option("--threads", o->volume.threads, "Threads for HXT (0: all)")->check(CLI::NonNegativeNumber);
   add_common_options(*app, o->common);
   return {app, [o] {
             const VolumeFormat format = volume_format(o->output);
             volume::VolumeOptions options = o->volume;
             options.algorithm = volume::parse_fill_algorithm(o->algorithm);
-            if (!o->end_names.empty()) options.end_names = split_names(o->end_names);
+            if (!o->end_names.empty()) options.end_names = split(o->end_names, ',');
+            for (const std::string& text : o->ends) {
+              auto [name, point] = parse_named_point(text, "--end");
+              options.end_at.push_back({name, point});
+            }
             TerminalReporter reporter(o->common.quiet);
             const auto start = std::chrono::steady_clock::now();
             const CheckedSurface surface = read_surface_input(o->surface, reporter);

@@ -19,24 +19,6 @@
 namespace vesselmesh::cli {
 namespace {
 
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  size_t start = 0;
-  for (;;) {
-    const size_t at = text.find(separator, start);
-    parts.push_back(text.substr(start, at == std::string::npos ? std::string::npos : at - start));
-    if (at == std::string::npos) return parts;
-    start = at + 1;
-  }
-}
-
-std::string checked_name(const std::string& name, const std::string& text, const char* option) {
-  if (!io::is_file_name_safe(name))
-    throw OptionError(fmt::format("{} '{}': the name must be letters, digits, '_', '-' or '.' (it names files)",
-                                  option, text));
-  return name;
-}
-
 // NAME:x,y,z:nx,ny,nz[:rx,ry,rz], or NAME:x,y,z for the plane normal to the centerline there.
 post::RingRequest parse_ring(const std::string& text) {
   const std::vector<std::string> parts = split(text, ':');
@@ -58,9 +40,8 @@ post::RingRequest parse_ring(const std::string& text) {
 }
 
 post::PointSpec parse_probe(const std::string& text) {
-  const std::vector<std::string> parts = split(text, ':');
-  if (parts.size() != 2) throw OptionError(fmt::format("--point '{}': give NAME:x,y,z", text));
-  return {checked_name(parts[0], text, "--point"), parse_point(parts[1], "--point")};
+  auto [name, point] = parse_named_point(text, "--point");
+  return {name, point};
 }
 
 std::pair<double, double> parse_window(const std::string& text) {

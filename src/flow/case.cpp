@@ -72,6 +72,12 @@ double Waveform::operator()(double t) const {
   return (1.0 - w) * values_[j - 1] + w * values_[j];
 }
 
+Waveform Waveform::scaled(double factor) const {
+  Waveform out = *this;
+  for (double& v : out.values_) v *= factor;
+  return out;
+}
+
 std::string to_string(BoundaryType type) {
   switch (type) {
     case BoundaryType::velocity: return "velocity";
@@ -136,7 +142,7 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
     r.fail("boundary", "missing: one [[boundary]] table per tag of the mesh");
   std::set<std::string> seen;
   for (const auto& [where, table] : r.tables(root, "boundary")) {
-    r.known_keys(*table, where, {"tag", "type", "profile", "flow", "waveform", "resistance", "backflow", "harmonics"});
+    r.known_keys(*table, where, {"tag", "type", "profile", "flow", "waveform", "scale", "resistance", "backflow", "harmonics"});
     const io::TomlView b(table);
     BoundaryCondition bc;
     bc.tag = r.text(b["tag"], where + ".tag", "");
@@ -156,6 +162,7 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
     only_for("profile", BoundaryType::velocity);
     only_for("flow", BoundaryType::velocity);
     only_for("waveform", BoundaryType::velocity);
+    only_for("scale", BoundaryType::velocity);
     only_for("resistance", BoundaryType::resistance);
     only_for("harmonics", BoundaryType::velocity);
     if (b["backflow"] && bc.type != BoundaryType::traction && bc.type != BoundaryType::resistance)
@@ -179,6 +186,7 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
       } else {
         r.fail(where, "a velocity boundary needs `flow` (mL/s) or `waveform` (CSV: time s, flow mL/s)");
       }
+      if (b["scale"]) bc.flow = bc.flow.scaled(r.number(b["scale"], where + ".scale", 1.0, false));
     }
     if (bc.type == BoundaryType::resistance) {
       if (!b["resistance"]) r.fail(where + ".resistance", "missing: the resistance in Pa s/m3");

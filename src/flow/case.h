@@ -9,7 +9,8 @@
 //              period may come with end too: the wall shear stress indices cover the last period
 //   [[boundary]] tag = "inlet"; type = "velocity" | "traction" | "resistance" | "wall";
 //              profile = "parabolic" | "plug" | "womersley"; flow = 5.0 (mL/s) or waveform = "inlet.csv"
-//              (time s, flow mL/s, repeated with its period); resistance = R (Pa s/m3)
+//              (time s, flow mL/s, repeated with its period); scale = -1.0 (multiplies the flow:
+//              an outlet given the inlet's waveform); resistance = R (Pa s/m3)
 //   [solver]   petsc_options = "..." (PETSc's options, applied after the defaults)
 // Added keys: [boundary] harmonics (womersley: the waveform's Fourier harmonics kept, default
 // 20); [time] picard (extra Oseen iterations per step, default 0), steady_tolerance
@@ -34,6 +35,7 @@ class Waveform {
   // file and line for anything else.
   static Waveform read_csv(const std::string& path);
   double operator()(double t) const;
+  Waveform scaled(double factor) const;
   double period() const { return times_.size() < 2 ? 0.0 : times_.back() - times_.front(); }
   int samples() const { return static_cast<int>(times_.size()); }
 

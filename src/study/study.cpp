@@ -71,7 +71,7 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
   const io::TomlReader r{path};
   StudyConfig c;
   c.path = path;
-  r.known_keys(root, "", {"surface", "units", "case", "triangles", "meshes", "reference", "volume", "post", "ring",
+  r.known_keys(root, "", {"surface", "units", "case", "triangles", "meshes", "reference", "volume", "post", "ring", "end",
                           "point"});
   const std::string surface = r.text(root["surface"], "surface", "");
   if (surface.empty()) r.fail("surface", "missing: the vessel surface (STL, VTP, ...) to study");
@@ -147,6 +147,15 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
     r.known_keys(*t, where, {"name", "point"});
     c.points.push_back({named(*t, where), r.point(io::TomlView(t)["point"], where + ".point")});
   }
+  for (const auto& [where, t] : r.tables(root, "end")) {
+    r.known_keys(*t, where, {"name", "point"});
+    const io::TomlView v(t);
+    const std::string name = r.text(v["name"], where + ".name", "");
+    if (name.empty() || name == "wall") r.fail(where + ".name", "missing, or 'wall' (the wall's own tag)");
+    c.end_at.push_back({name, r.point(v["point"], where + ".point")});
+  }
+  if (!c.end_at.empty() && (!c.end_names.empty() || c.inlet >= 0))
+    r.fail("end", "name the ends by [[end]] or by [volume] inlet / end_names, not both");
   if (c.rings.empty() && c.points.empty())
     r.fail("ring", "give at least one [[ring]] or [[point]]: the study compares WSS there");
   return c;
@@ -176,6 +185,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
   mesh::clean(file.mesh, {}, reporter);
   const TriMesh& surface = file.mesh;
   const flow::FlowCase base_case = flow::read_case(config.flow_case);  // checked before any long step
+  if (!config.end_at.empty()) volume::names_of_ends(analysis::open_ends(surface), config.end_at);  // and the ends' names
   reporter.info("study: curvature, centerlines and distance map of the input");
   const analysis::CurvatureField curvature = analysis::curvature(surface, {}, reporter);
   const centerline::Centerlines lines = centerline::extract(surface, {}, reporter);
@@ -191,6 +201,8 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
                                    VESSELMESH_VERSION, fingerprint(io::read_file(config.surface)), config.units,
                                    config.layers, config.thickness_ratio, config.algorithm, config.inlet);
   for (const std::string& n : config.end_names) common += n + ",";
+  for (const volume::EndAt& e : config.end_at)
+    common += fmt::format("\nend {} {} {} {}", e.name, e.point.x(), e.point.y(), e.point.z());
   std::string case_text = io::read_file(config.flow_case);
   for (const flow::BoundaryCondition& b : base_case.boundaries)
     if (!b.waveform_file.empty()) case_text += io::read_file(b.waveform_file);
@@ -256,6 +268,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       vo.algorithm = volume::parse_fill_algorithm(config.algorithm);
       vo.inlet = config.inlet;
       vo.end_names = config.end_names;
+      vo.end_at = config.end_at;
       const volume::VolumeResult volume_mesh =
           volume::build_volume(wall, analysis::open_ends(wall), wall_distance.radius, vo, reporter);
       io::write_msh(volume_file, volume_mesh.mesh);

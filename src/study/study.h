@@ -25,11 +25,14 @@
 //   [[ring]]    name = "ring1", point = [x, y, z], normal = [nx, ny, nz] (omit it: the plane
 //               normal to the centerline nearest the point), reference = [rx, ry, rz] (optional)
 //   [[point]]   name = "A", point = [x, y, z]
+//   [[end]]     name = "inlet", point = [x, y, z]: the end whose centre is nearest the point takes
+//               that name (all ends or none; instead of [volume] inlet / end_names)
 #pragma once
 
 #include "mesh/reporter.h"
 #include "post/ring.h"
 #include "sizing/size_field.h"
+#include "volume/volume_mesh.h"
 
 #include <map>
 #include <optional>
@@ -53,6 +56,7 @@ struct StudyConfig {
   std::string algorithm = "delaunay";
   int inlet = -1;
   std::vector<std::string> end_names;
+  std::vector<volume::EndAt> end_at;
   std::optional<double> time;
   std::vector<post::RingRequest> rings;
   std::vector<post::PointSpec> points;

@@ -1,34 +1,16 @@
 #include "synth/bifurcation.h"
 
-#include "mesh/clean.h"
-#include "mesh/connectivity.h"
 #include "mesh/error.h"
-#include "synth/implicit_surface.h"
-#include "synth/plane_cut.h"
-#include "synth/random.h"
+#include "synth/tubes.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
 
 namespace vesselmesh::synth {
 namespace {
-
-double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  return (p - (a + t * ab)).norm();
-}
-
-// Polynomial smooth minimum (Quilez): equals min(a, b) where |a - b| >= k.
-double smooth_min(double a, double b, double k) {
-  if (k <= 0.0) return std::min(a, b);
-  const double h = std::max(k - std::abs(a - b), 0.0) / k;
-  return std::min(a, b) - h * h * k / 4.0;
-}
 
 Vec3 daughter_direction(const BifurcationOptions& o, int k) {
   const double a = o.angle_deg[k] * std::numbers::pi / 180.0 * (k == 0 ? 1.0 : -1.0);
@@ -86,49 +68,8 @@ TriMesh bifurcation(const BifurcationOptions& o) {
   lo -= Vec3::Constant(margin);
   hi += Vec3::Constant(margin);
 
-  const double dh = 1e-3 * h;  // finite-difference step of the gradient
-  TriMesh mesh = polygonize(f, lo, hi, h);
-  mesh::clean(mesh, {.merge_tolerance = 0.02, .find_self_intersections = false});
-  for (int round = 0; round < 3; ++round) {  // marching cubes leaves slivers: smooth and flip
-    relax_on_zero_set(mesh, f, dh, 5);
-    flip_to_improve_angles(mesh);
-  }
-  relax_on_zero_set(mesh, f, dh, 5);
-  for (const TubeEnd& end : bifurcation_ends(o)) {
-    const CutPlane plane{.point = end.center, .normal = end.normal, .reach = 1.5 * end.radius};
-    auto onto_plane = [&](const Vec3& p) {
-      return project_to_zero_set(f, p - (p - end.center).dot(end.normal) * end.normal, dh);
-    };
-    mesh = cut_by_plane(mesh, plane, 0.35 * h, onto_plane);
-  }
-  // Relax again around the cuts, the new boundary kept in its planes.
-  const mesh::EdgeMap edges = mesh::build_edge_map(mesh);
-  std::vector<char> fixed(mesh.points.size(), 0);
-  for (int e = 0; e < edges.num_edges(); ++e)
-    if (edges.is_boundary(e)) fixed[edges.edges[e][0]] = fixed[edges.edges[e][1]] = 1;
-  flip_to_improve_angles(mesh);
-  relax_on_zero_set(mesh, f, dh, 3, fixed);
-  if (o.jitter > 0.0) {
-    Random random(o.seed);
-    std::vector<double> shortest(mesh.points.size(), std::numeric_limits<double>::infinity());
-    for (int e = 0; e < edges.num_edges(); ++e) {
-      const auto [a, b] = edges.edges[e];
-      const double l = (mesh.points[a] - mesh.points[b]).norm();
-      shortest[a] = std::min(shortest[a], l), shortest[b] = std::min(shortest[b], l);
-    }
-    std::vector<Vec3> moved = mesh.points;
-    for (int v = 0; v < mesh.num_points(); ++v) {
-      const double angle = random.uniform(0.0, 2.0 * std::numbers::pi), amount = o.jitter * random.uniform();
-      if (fixed[v]) continue;
-      const Vec3 n = gradient(f, mesh.points[v], dh).normalized();
-      const Vec3 t1 = n.unitOrthogonal(), t2 = n.cross(t1);
-      moved[v] = project_to_zero_set(
-          f, mesh.points[v] + amount * shortest[v] * (std::cos(angle) * t1 + std::sin(angle) * t2), dh);
-    }
-    mesh.points = std::move(moved);
-  }
-  mesh::clean(mesh, {.find_self_intersections = false});
-  return mesh;
+  const std::array<TubeEnd, 3> ends = bifurcation_ends(o);
+  return open_tube_surface(f, lo, hi, ends, {.resolution = h, .jitter = o.jitter, .seed = o.seed});
 }
 
 }  // namespace vesselmesh::synth

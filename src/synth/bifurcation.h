@@ -9,6 +9,7 @@
 #pragma once
 
 #include "mesh/trimesh.h"
+#include "synth/tubes.h"
 
 #include <array>
 #include <cstdint>
@@ -25,12 +26,6 @@ struct BifurcationOptions {
   double resolution = 0.5;
   double jitter = 0.0;
   uint64_t seed = 1;
-};
-
-struct TubeEnd {
-  Vec3 center;
-  Vec3 normal;  // unit, out of the lumen
-  double radius;
 };
 
 TriMesh bifurcation(const BifurcationOptions& options);

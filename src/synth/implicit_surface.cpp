@@ -15,6 +15,8 @@
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -55,11 +57,11 @@ TriMesh polygonize(const ImplicitFunction& f, const Vec3& lo, const Vec3& hi, do
   vtkNew<vtkFloatArray> values;
   values->SetName("f");
   values->SetNumberOfTuples(static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2]);
-  vtkIdType id = 0;
-  for (int k = 0; k < dims[2]; ++k)
+  tbb::parallel_for(0, dims[2], [&](int k) {  // every value on its own: the same grid on any thread count
+    vtkIdType id = static_cast<vtkIdType>(k) * dims[0] * dims[1];
     for (int j = 0; j < dims[1]; ++j)
-      for (int i = 0; i < dims[0]; ++i)
-        values->SetValue(id++, static_cast<float>(f(lo + spacing * Vec3(i, j, k))));
+      for (int i = 0; i < dims[0]; ++i) values->SetValue(id++, static_cast<float>(f(lo + spacing * Vec3(i, j, k))));
+  });
   image->GetPointData()->SetScalars(values);
 
   vtkNew<vtkFlyingEdges3D> contour;
@@ -73,11 +75,11 @@ TriMesh polygonize(const ImplicitFunction& f, const Vec3& lo, const Vec3& hi, do
 
   TriMesh mesh;
   mesh.points.resize(poly->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < poly->GetNumberOfPoints(); ++i) {
+  tbb::parallel_for(vtkIdType{0}, poly->GetNumberOfPoints(), [&](vtkIdType i) {
     double p[3];
     poly->GetPoint(i, p);
     mesh.points[i] = project_to_zero_set(f, Vec3(p[0], p[1], p[2]), 1e-3 * spacing);
-  }
+  });
   vtkNew<vtkIdList> ids;
   vtkCellArray* polys = poly->GetPolys();
   for (polys->InitTraversal(); polys->GetNextCell(ids);)
@@ -102,9 +104,9 @@ void relax_on_zero_set(TriMesh& mesh, const ImplicitFunction& f, double h, int i
   }
   std::vector<Vec3> next(np);
   for (int it = 0; it < iterations; ++it) {
-    for (int v = 0; v < np; ++v) {
+    tbb::parallel_for(0, np, [&](int v) {  // Jacobi: each point from the last positions only
       next[v] = mesh.points[v];
-      if ((!fixed.empty() && fixed[v]) || neighbours[v].empty()) continue;
+      if ((!fixed.empty() && fixed[v]) || neighbours[v].empty()) return;
       Vec3 mean = Vec3::Zero();
       for (int w : neighbours[v]) mean += mesh.points[w];
       mean /= static_cast<double>(neighbours[v].size());
@@ -112,7 +114,7 @@ void relax_on_zero_set(TriMesh& mesh, const ImplicitFunction& f, double h, int i
       Vec3 step = 0.5 * (mean - mesh.points[v]);
       step -= step.dot(normal) * normal;
       next[v] = project_to_zero_set(f, mesh.points[v] + step, h);
-    }
+    });
     mesh.points.swap(next);
   }
 }

@@ -75,8 +75,12 @@ Wall extract_wall(const TriMesh& surface, const std::vector<analysis::OpenEnd>& 
 
 // Tags: capped ends keep their label (when positive); the wall and the other ends take the
 // smallest free positive integers.
-void assign_tags(const std::vector<analysis::OpenEnd>& ends, const VolumeOptions& options, VolumeReport& report) {
+void assign_tags(const std::vector<analysis::OpenEnd>& ends, VolumeOptions options, VolumeReport& report) {
   const int count = static_cast<int>(ends.size());
+  if (!options.end_at.empty()) {
+    if (!options.end_names.empty()) throw OptionError("name the ends by --end-names or by --end, not both");
+    options.end_names = names_of_ends(ends, options.end_at);
+  }
   if (options.inlet >= count || options.inlet < -1)
     throw OptionError(fmt::format("--inlet {}: the surface has {} ends, numbered 0 to {} as `vesselmesh info` "
                                   "lists them",
@@ -113,6 +117,34 @@ void assign_tags(const std::vector<analysis::OpenEnd>& ends, const VolumeOptions
 }
 
 }  // namespace
+
+std::vector<std::string> names_of_ends(const std::vector<analysis::OpenEnd>& ends, const std::vector<EndAt>& named) {
+  auto centres = [&] {
+    std::string list;
+    for (size_t e = 0; e < ends.size(); ++e)
+      list += fmt::format("{}end {} at ({:.4g}, {:.4g}, {:.4g}) radius {:.3g}", e ? "; " : "", e, ends[e].center.x(),
+                          ends[e].center.y(), ends[e].center.z(), ends[e].radius);
+    return list;
+  };
+  if (named.size() != ends.size())
+    throw OptionError(fmt::format("{} ends named by a point for {} ends: name every end ({})", named.size(), ends.size(),
+                                  centres()));
+  std::vector<std::string> names(ends.size());
+  for (const EndAt& n : named) {
+    size_t best = 0;
+    for (size_t e = 1; e < ends.size(); ++e)
+      if ((ends[e].center - n.point).norm() < (ends[best].center - n.point).norm()) best = e;
+    const double distance = (ends[best].center - n.point).norm();
+    if (distance > 3.0 * ends[best].radius)
+      throw OptionError(fmt::format("end '{}' at ({:.4g}, {:.4g}, {:.4g}): no end within three radii ({})", n.name,
+                                    n.point.x(), n.point.y(), n.point.z(), centres()));
+    if (!names[best].empty())
+      throw OptionError(fmt::format("ends '{}' and '{}' name the same end {}: give a point near each end's centre ({})",
+                                    names[best], n.name, best, centres()));
+    names[best] = n.name;
+  }
+  return names;
+}
 
 void check_volume(const TetMesh& m) {
   const std::vector<Tet> all = mesh::all_tetrahedra(m);

@@ -26,14 +26,27 @@
 
 namespace vesselmesh::volume {
 
+// An end named by a point near its centre (`vesselmesh volume --end NAME:x,y,z`): names that
+// stay with their ends whatever order the ends come in.
+struct EndAt {
+  std::string name;
+  Vec3 point = Vec3::Zero();
+};
+
 struct VolumeOptions {
   BoundaryLayerOptions layer;  // layer.layers = 0: no boundary layer
   FillAlgorithm algorithm = FillAlgorithm::delaunay;  // deterministic; HXT is not run to run
   bool keep_prisms = false;
   int inlet = -1;                      // index into the ends; -1: the largest
   std::vector<std::string> end_names;  // in the ends' order; empty: inlet, outlet_1, ...
+  std::vector<EndAt> end_at;           // or: every end named by the point nearest its centre
   int threads = 0;
 };
+
+// The ends' names in their order from one point per end: each end takes the name of the point
+// nearest its centre. OptionError when the count differs, when two points pick the same end, or
+// when a point is farther than three radii from its end's centre (listing the centres).
+std::vector<std::string> names_of_ends(const std::vector<analysis::OpenEnd>& ends, const std::vector<EndAt>& named);
 
 struct VolumeEnd {
   std::string name;

@@ -8,9 +8,12 @@
 #include "test_support.h"
 
 #include <gtest/gtest.h>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -322,6 +325,41 @@ TEST(Cli, RemeshWritesTheSurfaceAndTheContractFigures) {
   EXPECT_EQ(no_metric.code, 2);
   EXPECT_NE(last_line(no_metric.err).find("no point data 'metric'"), std::string::npos) << no_metric.err;
   EXPECT_EQ(tmp.files(), (std::vector<std::string>{"f.mesh", "f.sol", "f.vtp", "m.mesh", "p.stl", "r.vtp", "s.stl"}));
+}
+
+TEST(Cli, SynthAnastomosisNamesItsEndsAndVolumeTakesThemByPoint) {
+  test::TemporaryFolder tmp;
+  const RunResult s = run({"synth", "anastomosis", "--resolution", "0.5", "--outlet-length", "20", "--graft-length", "8",
+                           "-o", tmp.path("a.vtp"), "--json"});
+  ASSERT_EQ(s.code, 0) << s.err;
+  const Json j = s.json();
+  ASSERT_EQ(j["ends"].size(), 3u);
+  EXPECT_EQ(j["boundary_loops"].get<int>(), 3);
+  EXPECT_EQ(j["units"], "mm");
+  std::vector<std::string> ends;
+  for (const Json& e : j["ends"]) {
+    const Json& c = e["center"];
+    ends.push_back(fmt::format("{}:{},{},{}", e["name"].get<std::string>(), c[0].get<double>(), c[1].get<double>(),
+                               c[2].get<double>()));
+  }
+  for (const char* key : {"heel", "toe", "floor", "ring1", "ring2"}) EXPECT_TRUE(j.contains(key)) << key;
+  std::vector<std::string> args = {"volume", tmp.path("a.vtp"), "-o", tmp.path("a.msh"), "--layers", "0", "--json"};
+  for (const std::string& e : ends) args.insert(args.end(), {"--end", e});
+  const RunResult v = run(args);
+  ASSERT_EQ(v.code, 0) << v.err;
+  for (const Json& e : v.json()["ends"]) {
+    const std::string name = e["name"];
+    const auto named = std::find_if(j["ends"].begin(), j["ends"].end(), [&](const Json& x) { return x["name"] == name; });
+    ASSERT_NE(named, j["ends"].end()) << name;
+    for (int i = 0; i < 3; ++i)
+      EXPECT_NEAR(e["center"][i].get<double>(), (*named)["center"][i].get<double>(), 0.05) << name;
+  }
+  // Two ends named by one point: exit 2, nothing written.
+  EXPECT_EQ(run({"volume", tmp.path("a.vtp"), "-o", tmp.path("b.msh"), "--end", ends[0], "--end", ends[0], "--end",
+                 ends[1]}).code,
+            2);
+  EXPECT_FALSE(std::filesystem::exists(tmp.path("b.msh")));
+  EXPECT_EQ(run({"synth", "anastomosis", "--angle", "100", "-o", tmp.path("c.vtp")}).code, 2);
 }
 
 TEST(Cli, VolumeWritesTaggedMeshesThatQualityReadsBack) {

@@ -123,6 +123,18 @@ TEST(Waveform, LinearBetweenSamplesAndPeriodic) {
   EXPECT_DOUBLE_EQ(w(3.2), 3.0);
 }
 
+TEST(FlowCase, ScaleMultipliesTheFlowOfAVelocityBoundary) {
+  std::string text = kContract;
+  text.replace(text.find("flow = 5.0"), 10, "flow = 5.0\nscale = -0.5");
+  EXPECT_DOUBLE_EQ(parse_case(text, "/c/case.toml").boundaries[0].flow(0.3), -2.5);
+  std::string wall = kContract;
+  wall.replace(wall.find("type = \"wall\""), 13, "type = \"wall\"\nscale = 2.0");
+  EXPECT_THROW(parse_case(wall, "/c/case.toml"), InputError);
+  const Waveform w = Waveform({0.0, 0.2, 1.0}, {1.0, 3.0, 1.0}).scaled(-2.0);
+  EXPECT_DOUBLE_EQ(w(0.1), -4.0);
+  EXPECT_DOUBLE_EQ(w.period(), 1.0);
+}
+
 TEST(Waveform, ReadsCsvAndNamesTheBadLine) {
   const test::TemporaryFolder folder;
   const std::string good = folder.path("good.csv"), bad = folder.path("bad.csv");

@@ -108,6 +108,15 @@ TEST(StudyFile, NamesTheKeyOfEveryMistake) {
   EXPECT_NE(error(study_text("[[point]]\nname = \"p\"\npoint = [0, 0, 0]\ncolour = 1\n")).find("point[0].colour: unknown"),
             std::string::npos);
   EXPECT_NE(error(study_text()).find("at least one [[ring]] or [[point]]"), std::string::npos);
+  const std::string end = "[[end]]\nname = \"graft\"\npoint = [1, 2, 3]\n";
+  EXPECT_NE(error(study_text("[volume]\ninlet = 1\n" + end + ring)).find("end: name the ends by [[end]] or"),
+            std::string::npos);
+  EXPECT_NE(error(study_text("[[end]]\nname = \"wall\"\npoint = [1, 2, 3]\n" + ring)).find("end[0].name"),
+            std::string::npos);
+  const StudyConfig named = parse_study(study_text(end + ring), "s.toml");
+  ASSERT_EQ(named.end_at.size(), 1u);
+  EXPECT_EQ(named.end_at[0].name, "graft");
+  EXPECT_EQ(named.end_at[0].point, Vec3(1, 2, 3));
   EXPECT_NE(error(study_text("x = [\n")).find("s.toml:"), std::string::npos);
   EXPECT_TRUE(std::isnan(relative_difference(1.0, 0.0)));
   EXPECT_NEAR(relative_difference(1.1, 1.0), 10.0, 1e-9);

@@ -157,6 +157,24 @@ TEST(Volume, BifurcationTagsFollowTheEndsAndNamesCanBeGiven) {
   EXPECT_THROW(build_volume(surface, ends, distance.radius, options), OptionError);
 }
 
+TEST(Volume, EndsNamedByPointsWhateverTheirOrder) {
+  std::vector<analysis::OpenEnd> ends(3);
+  ends[0].center = Vec3(0, 0, 0), ends[0].radius = 3.0;
+  ends[1].center = Vec3(40, 0, 0), ends[1].radius = 2.5;  // two ends of one radius: their order is no guide
+  ends[2].center = Vec3(-15, 0, 0), ends[2].radius = 2.5;
+  const std::vector<EndAt> named = {{"stump", {-14, 1, 0}}, {"inlet", {0.5, 0, 0}}, {"outlet", {41, 0, -1}}};
+  EXPECT_EQ(names_of_ends(ends, named), (std::vector<std::string>{"inlet", "outlet", "stump"}));
+  // Too few, two on one end, one far from every end: each an OptionError naming the ends.
+  EXPECT_THROW(names_of_ends(ends, {named[0], named[1]}), OptionError);
+  EXPECT_THROW(names_of_ends(ends, {{"a", {0, 0, 0}}, {"b", {1, 0, 0}}, {"c", {40, 0, 0}}}), OptionError);
+  try {
+    names_of_ends(ends, {{"a", {0, 0, 0}}, {"b", {40, 0, 0}}, {"c", {-15, 30, 0}}});
+    ADD_FAILURE() << "a point far from every end was taken";
+  } catch (const OptionError& e) {
+    EXPECT_NE(std::string(e.what()).find("end 2 at (-15, 0, 0)"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Volume, DelaunayGivesTheSameMeshRunAfterRun) {
   const TriMesh pipe = synth::cylinder({.radius = 2.0, .length = 8.0, .resolution = 0.4, .jitter = 0.1});
   const auto ends = analysis::open_ends(pipe);
