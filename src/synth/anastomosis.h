@@ -39,7 +39,7 @@ struct AnastomosisOptions {
   double stump_length = 10.0;       // host from the heel back to the stump's end
   double outlet_length = 40.0;      // host from the toe to the outlet
   double tortuosity = 0.0;          // amplitude of the distal host's S-bend out of the graft's plane
-  double resolution = 0.2;          // target edge length
+  double resolution = 0.15;         // target edge length
   double jitter = 0.0;
   uint64_t seed = 1;
 };

@@ -1,12 +1,18 @@
 #include "study/study.h"
 
+#include "analysis/open_ends.h"
+#include "flow/case.h"
 #include "io/atomic_file.h"
+#include "io/surface.h"
+#include "mesh/locator.h"
+#include "mesh/statistics.h"
 #include "mesh/error.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
@@ -143,6 +149,47 @@ TEST(StudyFile, TheExampleStudyReads) {
   EXPECT_TRUE(std::filesystem::exists(c.flow_case)) << c.flow_case;
   EXPECT_EQ(c.kinds.size(), 4u);
   EXPECT_EQ(c.rings.size(), 2u);
+}
+
+// The anastomosis example matches the bundled surface: its ends are named by points at the
+// surface's ends, its rings cut closed loops there, its points lie on the wall, and its case
+// reads (the study's time inside the run, the outlet's flow the inlet's leaving).
+TEST(StudyFile, TheAnastomosisExampleFitsTheBundledSurface) {
+  const StudyConfig c = read_study(std::string(VESSELMESH_EXAMPLES_DIR) + "/anastomosis_study.toml");
+  const TriMesh wall = io::read_surface(c.surface).mesh;
+  const std::vector<analysis::OpenEnd> ends = analysis::open_ends(wall);
+  ASSERT_EQ(ends.size(), 3u);
+  const std::vector<std::string> names = volume::names_of_ends(ends, c.end_at);
+  for (size_t e = 0; e < ends.size(); ++e) {
+    const auto named = std::find_if(c.end_at.begin(), c.end_at.end(), [&](const auto& x) { return x.name == names[e]; });
+    EXPECT_LT((named->point - ends[e].center).norm(), 0.01) << names[e];
+  }
+  EXPECT_NEAR(ends[0].radius, 3.0, 0.02 * 3.0);  // the graft, the largest
+  // The input is finer than the study's finest mesh: its edges under a third of that mesh's.
+  const mesh::Statistics stats = mesh::statistics(wall);
+  const double finest = c.triangles * std::pow(c.factor, c.levels);
+  EXPECT_LT(stats.edge_length.mean, std::sqrt(4.0 * stats.area / (std::sqrt(3.0) * finest)) / 3.0);
+  const std::vector<Vec3> zero(wall.points.size(), Vec3::Zero());
+  ASSERT_EQ(c.rings.size(), 2u);
+  for (const post::RingRequest& r : c.rings) EXPECT_TRUE(post::cut_ring(wall, zero, r.spec).closed) << r.spec.name;
+  const mesh::SurfaceLocator locator(wall);
+  for (const post::PointSpec& p : c.points) EXPECT_LT((locator.closest(p.point).point - p.point).norm(), 0.02) << p.name;
+  const flow::FlowCase k = flow::read_case(c.flow_case);
+  ASSERT_TRUE(c.time.has_value());
+  EXPECT_LE(*c.time, k.end);
+  ASSERT_EQ(k.boundaries.size(), 4u);
+  EXPECT_NEAR(k.boundaries[0].flow(0.21), -k.boundaries[1].flow(0.21), 1e-12);
+  EXPECT_GT(k.boundaries[0].flow(0.21), 0.0);
+  EXPECT_NEAR(k.boundaries[0].flow.period(), k.period, 1e-12);
+  // The waveform's published figures: mean 61.9 mL/min, peak 4.8 times the mean, a reversal.
+  double mean = 0.0, peak = -1e9, least = 1e9;
+  for (int i = 0; i < 1000; ++i) {
+    const double q = k.boundaries[0].flow((i + 0.5) * k.period / 1000);
+    mean += q / 1000, peak = std::max(peak, q), least = std::min(least, q);
+  }
+  EXPECT_NEAR(mean, 61.9 / 60.0, 0.01 * 61.9 / 60.0);
+  EXPECT_NEAR(peak / mean, 4.8, 0.05);
+  EXPECT_LT(least, 0.0);
 }
 
 // The study end to end on the bundled bifurcation, small: two meshes compared, one level.
