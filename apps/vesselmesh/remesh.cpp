@@ -5,6 +5,7 @@
 #include "mesh/error.h"
 #include "mesh/geometry.h"
 #include "remesh/adapt.h"
+#include "remesh/reparametrize.h"
 #include "sizing/metric.h"
 
 #include <Eigen/Eigenvalues>
@@ -105,12 +106,16 @@ Command add_remesh_command(CLI::App& parent) {
       "Adapts the surface to a size field by local operations in the metric (split, collapse, flip, move; as MMG's "
       "mmgs): edges of unit metric length, well-shaped triangles, every point on the input. Open ends, creases and label "
       "borders are kept as feature lines; labels follow their triangles. The distance from the input stays below "
-      "--hausdorff (mm) and --hausdorff-relative times the local vessel radius");
+      "--hausdorff (mm) and --hausdorff-relative times the local vessel radius. --engine gmsh takes the seed paper's "
+      "route instead: Gmsh cuts the surface into patches it can flatten, meshes each in its plane to the same field and "
+      "maps it back");
   struct Options {
     SurfaceInput surface;
     std::string output, metric;
     SizingArgs sizing;
     remesh::RemeshOptions remesh;
+    std::string engine = "native", gmsh_algorithm = "delaunay";
+    remesh::GmshRemeshOptions gmsh;
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
@@ -135,9 +140,24 @@ Command add_remesh_command(CLI::App& parent) {
   app->add_option("--max-iterations", o->remesh.max_iterations, "Passes of split, collapse, flip and move")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app->add_option("--engine", o->engine,
+                  "native (local operations in the metric) or gmsh (Gmsh's reparametrization: patches meshed in their "
+                  "plane; isotropic: an anisotropic field is met through its smallest size)")
+      ->check(CLI::IsMember({"native", "gmsh"}))
+      ->capture_default_str();
+  app->add_option("--gmsh-algorithm", o->gmsh_algorithm, "Gmsh's 2D algorithm for --engine gmsh")
+      ->check(CLI::IsMember({"delaunay", "frontal", "meshadapt"}))
+      ->capture_default_str();
+  app->add_option("--classify-angle", o->gmsh.classify_angle_deg,
+                  "--engine gmsh: patches are split where the normals turn more than this (degrees)")
+      ->check(CLI::Range(1.0, 179.0))
+      ->capture_default_str();
   add_common_options(*app, o->common);
-  return {app, [o] {
+  return {app, [o, app] {
             const io::SurfaceFormat format = io::surface_format(o->output);
+            const bool gmsh = o->engine == "gmsh";
+            if (!gmsh && app->count("--gmsh-algorithm") + app->count("--classify-angle") > 0)
+              throw OptionError("--gmsh-algorithm and --classify-angle go with --engine gmsh");
             if (format != io::SurfaceFormat::stl && format != io::SurfaceFormat::vtp && format != io::SurfaceFormat::msh &&
                 format != io::SurfaceFormat::medit)
               throw OptionError(fmt::format("{}: the remeshed surface is written as .stl, .vtp, .msh or .mesh", o->output));
@@ -174,8 +194,18 @@ Command add_remesh_command(CLI::App& parent) {
             remesh::RemeshOptions options = o->remesh;
             if (distance) options.input_radius = &distance->radius;
             const double target = o->sizing.options.target_triangles;
-            const remesh::RemeshResult result = target > 0.0 ? remesh::adapt_to_count(input, metric, target, options, reporter)
-                                                             : remesh::adapt(input, metric, options, reporter);
+            int patches = 0;
+            remesh::GmshRemeshOptions gmsh_options = o->gmsh;
+            gmsh_options.algorithm = remesh::parse_gmsh_algorithm(o->gmsh_algorithm);
+            gmsh_options.remesh = options;
+            const remesh::Engine engine = [&](const std::vector<Sym3>& m) {
+              if (!gmsh) return remesh::adapt(input, m, options, reporter);
+              remesh::GmshRemeshResult r = remesh::reparametrize(input, m, gmsh_options, reporter);
+              patches = r.patches;
+              return std::move(r.result);
+            };
+            const remesh::RemeshResult result =
+                target > 0.0 ? remesh::fit_count(engine, metric, target, reporter) : engine(metric);
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             const remesh::RemeshStats& s = result.stats;
 
@@ -188,6 +218,11 @@ Command add_remesh_command(CLI::App& parent) {
               json["units"] = "mm";
               json["size"] = sized ? Json(sizing::size_kind_name(sized->field.kind)) : Json("metric file");
               if (target > 0.0) json["target_triangles"] = std::lround(target);
+              json["engine"] = o->engine;
+              if (gmsh) {
+                json["gmsh_algorithm"] = o->gmsh_algorithm;
+                json["patches"] = patches;
+              }
               json["seconds"] = round_to(seconds, 4);
               print_json(json);
             } else {

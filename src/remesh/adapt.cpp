@@ -564,7 +564,39 @@ std::vector<Sym3> bounded_metrics(const std::vector<Sym3>& metrics, const std::v
   return out;
 }
 
+// What a run works to: the features, the distance bound per input point and the metric
+// intersected with the bound's chord metric.
+struct Prepared {
+  analysis::Features features;
+  std::vector<double> bound;
+  std::vector<Sym3> metric;
+  int geometric_points = 0;
+};
+
+Prepared prepare(const TriMesh& input, const std::vector<Sym3>& metrics, const RemeshOptions& options) {
+  Prepared p;
+  p.features = analysis::detect_features(input, options.features);
+  const bool bounded = options.hausdorff > 0.0 || options.hausdorff_relative > 0.0;
+  std::optional<analysis::CurvatureField> own;
+  const analysis::CurvatureField* curvature = options.curvature;
+  if (!curvature && bounded && (options.geometric_metric || !options.input_radius)) {
+    own = analysis::patch_curvature(input, p.features);
+    curvature = &*own;
+  }
+  p.bound = distance_bounds(input, options, curvature);
+  p.metric = options.geometric_metric && bounded ? bounded_metrics(metrics, p.bound, *curvature, p.geometric_points)
+                                                 : metrics;
+  return p;
+}
+
 }  // namespace
+
+std::vector<Sym3> effective_metric(const TriMesh& input, const std::vector<Sym3>& metrics, const RemeshOptions& options,
+                                   int* changed) {
+  Prepared p = prepare(input, metrics, options);
+  if (changed) *changed = p.geometric_points;
+  return std::move(p.metric);
+}
 
 RemeshResult adapt(const TriMesh& input, const std::vector<Sym3>& metrics, const RemeshOptions& options,
                    const Reporter& reporter) {
@@ -578,20 +610,10 @@ RemeshResult adapt(const TriMesh& input, const std::vector<Sym3>& metrics, const
   if (options.curvature && options.curvature->size() != input.num_points())
     throw InternalError("the curvature does not belong to this surface");
   const auto start = std::chrono::steady_clock::now();
-  analysis::Features features = analysis::detect_features(input, options.features);
-  const bool bounded = options.hausdorff > 0.0 || options.hausdorff_relative > 0.0;
-  std::optional<analysis::CurvatureField> own;
-  const analysis::CurvatureField* curvature = options.curvature;
-  if (!curvature && bounded && (options.geometric_metric || !options.input_radius)) {
-    own = analysis::patch_curvature(input, features);
-    curvature = &*own;
-  }
-  const std::vector<double> bound = distance_bounds(input, options, curvature);
-  int geometric_points = 0;
-  SurfaceModel model(input,
-                           options.geometric_metric && bounded ? bounded_metrics(metrics, bound, *curvature, geometric_points)
-                                                               : metrics,
-                           std::move(features));
+  Prepared prepared = prepare(input, metrics, options);
+  const std::vector<double>& bound = prepared.bound;
+  const int geometric_points = prepared.geometric_points;
+  SurfaceModel model(input, prepared.metric, std::move(prepared.features));
   Remesher remesher(model, options, bound);
   remesher.run(reporter);
   RemeshResult result;
@@ -612,8 +634,14 @@ RemeshResult adapt(const TriMesh& input, const std::vector<Sym3>& metrics, const
 RemeshResult adapt_to_count(const TriMesh& input, const std::vector<Sym3>& metrics, double target_triangles,
                             const RemeshOptions& options, const Reporter& reporter, double tolerance,
                             int max_corrections) {
+  return fit_count([&](const std::vector<Sym3>& m) { return adapt(input, m, options, reporter); }, metrics,
+                   target_triangles, reporter, tolerance, max_corrections);
+}
+
+RemeshResult fit_count(const Engine& engine, const std::vector<Sym3>& metrics, double target_triangles,
+                       const Reporter& reporter, double tolerance, int max_corrections) {
   if (!(target_triangles > 0.0)) throw OptionError("the target triangle count must be positive");
-  RemeshResult result = adapt(input, metrics, options, reporter);
+  RemeshResult result = engine(metrics);
   double seconds = result.stats.seconds;
   // The count goes roughly as scale^alpha for a metric scaled by `scale` (alpha = 1 in theory;
   // the discrete result scatters by some percent). First steps assume alpha = 1; once two runs
@@ -643,7 +671,7 @@ RemeshResult adapt_to_count(const TriMesh& input, const std::vector<Sym3>& metri
     std::vector<Sym3> scaled = metrics;
     for (Sym3& m : scaled)
       for (double& x : m.v) x *= scale;
-    RemeshResult next = adapt(input, scaled, options, reporter);
+    RemeshResult next = engine(scaled);
     seconds += next.stats.seconds;
     runs.push_back({scale, static_cast<double>(next.stats.triangles)});
     if (std::abs(next.stats.triangles - target_triangles) < std::abs(result.stats.triangles - target_triangles))

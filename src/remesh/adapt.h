@@ -25,6 +25,7 @@
 #include "mesh/trimesh.h"
 #include "remesh/surface_model.h"
 
+#include <functional>
 #include <vector>
 
 namespace vesselmesh::remesh {
@@ -83,6 +84,18 @@ RemeshResult adapt(const TriMesh& input, const std::vector<Sym3>& metrics, const
 RemeshResult adapt_to_count(const TriMesh& input, const std::vector<Sym3>& metrics, double target_triangles,
                             const RemeshOptions& options = {}, const Reporter& reporter = silent_reporter(),
                             double tolerance = 0.02, int max_corrections = 4);
+
+// A remeshing engine: the surface adapted to the given metric (native: adapt; Gmsh: reparametrize).
+using Engine = std::function<RemeshResult(const std::vector<Sym3>& metric)>;
+// What adapt_to_count does, for any engine.
+RemeshResult fit_count(const Engine& engine, const std::vector<Sym3>& metrics, double target_triangles,
+                       const Reporter& reporter = silent_reporter(), double tolerance = 0.02, int max_corrections = 4);
+
+// The metric adapt() works to: `metrics` intersected with the chord bound of the distance bounds
+// (as RemeshOptions::geometric_metric says; unchanged without bounds). `changed` (may be null)
+// counts the points it refined. For other engines, so that they meet the same field.
+std::vector<Sym3> effective_metric(const TriMesh& input, const std::vector<Sym3>& metrics, const RemeshOptions& options,
+                                   int* changed = nullptr);
 
 // The figures of `mesh` against per-point metrics, its distance from `model`'s input, and
 // (with radii) relative to the local radius. The distance is the global closest point's, or

@@ -289,6 +289,27 @@ TEST(Cli, SizeWritesSizeAndMetric) {
   EXPECT_EQ(tmp.files(), (std::vector<std::string>{"f.vtp", "g.vtp", "p.stl"}));
 }
 
+TEST(Cli, RemeshByGmshGivesTheSameFiguresAndNamesItsEngine) {
+  test::TemporaryFolder tmp;
+  ASSERT_EQ(run({"synth", "cylinder", "--radius", "3", "--length", "20", "--resolution", "0.3", "-o", tmp.path("p.stl")}).code, 0);
+  const RunResult r = run({"remesh", tmp.path("p.stl"), "--size", "curvature", "--target-triangles", "2000", "--engine",
+                           "gmsh", "--gmsh-algorithm", "frontal", "-o", tmp.path("g.vtp"), "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = r.json();
+  EXPECT_EQ(j["engine"], "gmsh");
+  EXPECT_EQ(j["gmsh_algorithm"], "frontal");
+  EXPECT_GE(j["patches"].get<int>(), 1);
+  EXPECT_NEAR(j["triangles"].get<double>(), 2000.0, 0.03 * 2000.0);
+  EXPECT_GT(j["edges_in_unit_range"].get<double>(), 0.7);
+  const io::SurfaceFile out = io::read_surface(tmp.path("g.vtp"));
+  EXPECT_EQ(out.mesh.num_triangles(), j["triangles"].get<int>());
+  // Gmsh's options without its engine: exit 2, nothing written.
+  EXPECT_EQ(run({"remesh", tmp.path("p.stl"), "--size", "uniform", "--h", "1", "--gmsh-algorithm", "frontal", "-o",
+                 tmp.path("x.vtp")}).code,
+            2);
+  EXPECT_FALSE(std::filesystem::exists(tmp.path("x.vtp")));
+}
+
 TEST(Cli, RemeshWritesTheSurfaceAndTheContractFigures) {
   test::TemporaryFolder tmp;
   ASSERT_EQ(run({"synth", "cylinder", "--radius", "3", "--length", "20", "--resolution", "0.3", "-o", tmp.path("p.stl")}).code, 0);

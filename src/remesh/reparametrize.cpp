@@ -1,0 +1,193 @@
+#include "remesh/reparametrize.h"
+
+#include "io/gmsh_session.h"
+#include "mesh/clean.h"
+#include "mesh/error.h"
+#include "mesh/statistics.h"
+#include "remesh/surface_model.h"
+#include "sizing/metric.h"
+
+#include <fmt/format.h>
+#include <gmsh.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <unordered_map>
+
+namespace vesselmesh::remesh {
+namespace {
+
+constexpr int kTriangle3 = 2;  // Gmsh's element type of a 3-node triangle
+
+int gmsh_code(GmshAlgorithm a) {
+  switch (a) {
+    case GmshAlgorithm::meshadapt: return 1;
+    case GmshAlgorithm::delaunay: return 5;
+    case GmshAlgorithm::frontal: return 6;
+  }
+  return 5;
+}
+
+// The smallest size a metric asks for.
+double smallest_size(const Sym3& m) {
+  Vec3 sizes;
+  Eigen::Matrix3d directions;
+  sizing::metric_sizes(m, sizes, directions);
+  return sizes.minCoeff();
+}
+
+std::string where(const Vec3& p) { return fmt::format("({:.4g}, {:.4g}, {:.4g})", p.x(), p.y(), p.z()); }
+
+}  // namespace
+
+GmshAlgorithm parse_gmsh_algorithm(const std::string& name) {
+  if (name == "delaunay") return GmshAlgorithm::delaunay;
+  if (name == "frontal") return GmshAlgorithm::frontal;
+  if (name == "meshadapt") return GmshAlgorithm::meshadapt;
+  throw OptionError(fmt::format("unknown Gmsh algorithm '{}': delaunay, frontal or meshadapt", name));
+}
+
+std::string gmsh_algorithm_name(GmshAlgorithm algorithm) {
+  switch (algorithm) {
+    case GmshAlgorithm::delaunay: return "delaunay";
+    case GmshAlgorithm::frontal: return "frontal";
+    case GmshAlgorithm::meshadapt: return "meshadapt";
+  }
+  return "delaunay";
+}
+
+GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& metrics, const GmshRemeshOptions& o,
+                               const Reporter& reporter) {
+  if (metrics.size() != input.points.size())
+    throw InputError(fmt::format("the metric field has {} values for {} points: it does not belong to this surface",
+                                 metrics.size(), input.points.size()));
+  if (!(o.classify_angle_deg > 0.0 && o.classify_angle_deg < 180.0))
+    throw OptionError("the classification angle must be in (0, 180) degrees");
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<Sym3> field = effective_metric(input, metrics, o.remesh);
+  const SurfaceModel model(input, field, o.remesh.features);
+  double least = std::numeric_limits<double>::infinity(), most = 0.0;
+  for (const Sym3& m : field) {
+    const double h = smallest_size(m);
+    least = std::min(least, h), most = std::max(most, h);
+  }
+
+  GmshRemeshResult out;
+  TriMesh mesh;
+  std::vector<int> patch_of;  // per output triangle
+  std::vector<std::pair<int, Vec3>> empty_patches;
+  io::GmshSession session;
+  io::call_gmsh("remeshing by Gmsh (reparametrization)", [&] {
+    gmsh::model::add("surface");
+    gmsh::model::addDiscreteEntity(2, 1);
+    std::vector<std::size_t> node_tags(input.points.size());
+    std::vector<double> coords;
+    coords.reserve(3 * input.points.size());
+    for (size_t i = 0; i < input.points.size(); ++i) {
+      node_tags[i] = i + 1;
+      coords.insert(coords.end(), {input.points[i].x(), input.points[i].y(), input.points[i].z()});
+    }
+    std::vector<std::size_t> element_tags, element_nodes;
+    for (size_t t = 0; t < input.triangles.size(); ++t) {
+      element_tags.push_back(t + 1);
+      for (int v : input.triangles[t]) element_nodes.push_back(static_cast<std::size_t>(v) + 1);
+    }
+    gmsh::model::mesh::addNodes(2, 1, node_tags, coords);
+    gmsh::model::mesh::addElementsByType(1, kTriangle3, element_tags, element_nodes);
+    reporter.progress("Gmsh: classifying and parametrizing patches", 0.0);
+    gmsh::model::mesh::classifySurfaces(o.classify_angle_deg * std::numbers::pi / 180.0, true, true,
+                                        o.curve_angle_deg * std::numbers::pi / 180.0);
+    gmsh::model::mesh::createGeometry();
+    gmsh::vectorpair surfaces;
+    gmsh::model::getEntities(surfaces, 2);
+    out.patches = static_cast<int>(surfaces.size());
+    reporter.progress("Gmsh: classifying and parametrizing patches", 1.0);
+
+    gmsh::option::setNumber("General.NumThreads", 1);  // the size callback is ours and serial
+    gmsh::option::setNumber("Mesh.Algorithm", gmsh_code(o.algorithm));
+    gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+    gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+    gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+    gmsh::option::setNumber("Mesh.MeshSizeMin", 0.5 * least);
+    gmsh::option::setNumber("Mesh.MeshSizeMax", 2.0 * most);
+    gmsh::model::mesh::setSizeCallback([&model](int, int, double x, double y, double z) {
+      return smallest_size(model.project(Vec3(x, y, z)).metric);
+    });
+    reporter.progress("Gmsh: meshing the patches", 0.0);
+    gmsh::model::mesh::generate(2);
+    gmsh::model::mesh::removeSizeCallback();
+    reporter.progress("Gmsh: meshing the patches", 1.0);
+
+    std::vector<std::size_t> tags;
+    std::vector<double> xyz, parametric;
+    gmsh::model::mesh::getNodes(tags, xyz, parametric, -1, -1, true, false);
+    std::unordered_map<std::size_t, int> index_of;
+    index_of.reserve(tags.size());
+    for (size_t i = 0; i < tags.size(); ++i)
+      if (index_of.emplace(tags[i], static_cast<int>(mesh.points.size())).second)
+        mesh.points.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    for (const auto& [dim, tag] : surfaces) {
+      std::vector<std::size_t> triangle_tags, triangle_nodes;
+      gmsh::model::mesh::getElementsByType(kTriangle3, triangle_tags, triangle_nodes, tag);
+      if (triangle_tags.empty()) {
+        double x0, y0, z0, x1, y1, z1;
+        gmsh::model::getBoundingBox(dim, tag, x0, y0, z0, x1, y1, z1);
+        empty_patches.emplace_back(tag, Vec3(0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.5 * (z0 + z1)));
+        continue;
+      }
+      for (size_t t = 0; t < triangle_tags.size(); ++t) {
+        Triangle f;
+        for (int c = 0; c < 3; ++c) {
+          const auto it = index_of.find(triangle_nodes[3 * t + c]);
+          if (it == index_of.end()) throw InternalError("Gmsh returned a triangle on an unknown node");
+          f[c] = it->second;
+        }
+        mesh.triangles.push_back(f);
+        patch_of.push_back(tag);
+      }
+    }
+  });
+  if (!empty_patches.empty())
+    throw InputError(fmt::format("Gmsh made no triangles on patch {} of {} (near {}){}: lower the classification angle "
+                                 "to cut it smaller, or use the native engine",
+                                 empty_patches[0].first, out.patches, where(empty_patches[0].second),
+                                 empty_patches.size() > 1 ? fmt::format(" and on {} more", empty_patches.size() - 1) : ""));
+
+  // One surface: shared curve nodes merged, oriented like the input (outward), then checked
+  // against the input's topology.
+  mesh::clean(mesh, {.keep_largest_component = false, .orient_outward = true, .find_self_intersections = false});
+  const mesh::Statistics before = mesh::statistics(input), after = mesh::statistics(mesh);
+  if (after.components != before.components || after.boundary_loops != before.boundary_loops ||
+      after.genus != before.genus) {
+    throw InputError(fmt::format("Gmsh's mesh does not have the input's topology ({} components, {} boundary loops, "
+                                 "genus {} against {}, {}, {}): a patch was left with a hole or a seam; lower the "
+                                 "classification angle or use the native engine",
+                                 after.components, after.boundary_loops, after.genus, before.components,
+                                 before.boundary_loops, before.genus));
+  }
+  std::vector<Sym3> metric(mesh.points.size());
+  std::vector<int> hints(mesh.points.size());
+  for (size_t v = 0; v < mesh.points.size(); ++v) {
+    const Projection p = model.project(mesh.points[v]);
+    metric[v] = p.metric;
+    hints[v] = p.triangle;
+  }
+  if (input.has_labels()) {
+    mesh.labels.resize(mesh.triangles.size());
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const Triangle& f = mesh.triangles[t];
+      const Vec3 centroid = (mesh.points[f[0]] + mesh.points[f[1]] + mesh.points[f[2]]) / 3.0;
+      mesh.labels[t] = input.labels[model.project(centroid).triangle];
+    }
+  }
+  out.result.mesh = std::move(mesh);
+  out.result.metric = std::move(metric);
+  out.result.stats = measure(out.result.mesh, out.result.metric, model, o.remesh.input_radius, &hints);
+  out.result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace vesselmesh::remesh

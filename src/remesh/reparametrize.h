@@ -1,0 +1,48 @@
+// The seed paper's remeshing route, through Gmsh's C++ API: the input triangulation is cut into
+// patches that a single map can flatten (classifySurfaces with forReparametrization: zero genus,
+// moderate aspect ratio, split where normals turn more than the classification angle), each
+// patch is parametrized (createGeometry), meshed in its plane by a 2D algorithm to our size
+// field (a size callback: the metric at the closest input point), and mapped back.
+//
+// The field is the one the native engine meets (remesh::effective_metric: the size field
+// intersected with the chord bound of the distance bounds), so that both engines can be compared
+// on the same input and field. Delaunay, Frontal and MeshAdapt are isotropic: an anisotropic
+// metric is met through its smallest size.
+//
+// Output: the same as adapt() gives — the surface (labels carried from the closest input
+// triangle), the metric per output point, the figures against that metric (measure()). A patch
+// Gmsh fails on (an error, or a patch left without triangles), or a result whose topology differs
+// from the input's (a hole, a lost or extra boundary loop), is an InputError naming the patch
+// and where it is: never a mesh with holes.
+#pragma once
+
+#include "mesh/reporter.h"
+#include "mesh/trimesh.h"
+#include "remesh/adapt.h"
+
+#include <string>
+#include <vector>
+
+namespace vesselmesh::remesh {
+
+enum class GmshAlgorithm { delaunay, frontal, meshadapt };
+
+GmshAlgorithm parse_gmsh_algorithm(const std::string& name);  // OptionError for an unknown name
+std::string gmsh_algorithm_name(GmshAlgorithm algorithm);
+
+struct GmshRemeshOptions {
+  GmshAlgorithm algorithm = GmshAlgorithm::delaunay;
+  double classify_angle_deg = 40.0;  // patches split where normals turn more than this
+  double curve_angle_deg = 180.0;    // curves split where they turn more than this (180: never)
+  RemeshOptions remesh;              // distance bounds, local radius, features: as the native engine
+};
+
+struct GmshRemeshResult {
+  RemeshResult result;
+  int patches = 0;  // surfaces Gmsh classified and parametrized
+};
+
+GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& metrics, const GmshRemeshOptions& options,
+                               const Reporter& reporter = silent_reporter());
+
+}  // namespace vesselmesh::remesh

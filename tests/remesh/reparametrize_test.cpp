@@ -1,0 +1,97 @@
+#include "remesh/reparametrize.h"
+
+#include "mesh/error.h"
+#include "mesh/statistics.h"
+#include "sizing/metric.h"
+#include "synth/bifurcation.h"
+#include "synth/shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+namespace vesselmesh::remesh {
+namespace {
+
+std::vector<Sym3> uniform(const TriMesh& m, double h) { return std::vector<Sym3>(m.points.size(), sizing::isotropic_metric(h)); }
+
+// An open pipe meshed by Gmsh to a uniform size: the input's topology, edges of about that size,
+// every point on the cylinder, and a count near the native engine's.
+TEST(Reparametrize, OpenPipeToAUniformSize) {
+  const TriMesh input = synth::cylinder({.radius = 3.0, .length = 20.0, .resolution = 0.4, .jitter = 0.3});
+  const double h = 0.8;
+  const GmshRemeshResult g = reparametrize(input, uniform(input, h), {});
+  const mesh::Statistics s = mesh::statistics(g.result.mesh);
+  EXPECT_GE(g.patches, 1);
+  EXPECT_EQ(s.components, 1);
+  EXPECT_EQ(s.boundary_loops, 2);
+  EXPECT_EQ(s.genus, 0);
+  EXPECT_GT(s.volume, 0.0);  // outward, as the input
+  EXPECT_NEAR(s.edge_length.mean, h, 0.2 * h);
+  EXPECT_GT(g.result.stats.edges_in_unit_range, 0.8);
+  EXPECT_GT(g.result.stats.mean_quality, 0.85);
+  EXPECT_GT(s.min_angle.min, 10.0);
+  // On the input's facets: inside the cylinder by at most their depth l^2 / (2 r).
+  const double l = mesh::statistics(input).edge_length.max, depth = l * l / (2.0 * 3.0);
+  for (const Vec3& p : g.result.mesh.points) EXPECT_NEAR(std::hypot(p.x(), p.y()), 3.0, depth);
+  EXPECT_LT(g.result.stats.hausdorff, depth);
+  // Gmsh's Delaunay makes edges a little shorter than asked: about 1.3 times the native count.
+  const RemeshResult native = adapt(input, uniform(input, h));
+  const double ratio = static_cast<double>(g.result.stats.triangles) / native.stats.triangles;
+  EXPECT_GT(ratio, 0.9);
+  EXPECT_LT(ratio, 1.5);
+  EXPECT_EQ(g.result.metric.size(), g.result.mesh.points.size());
+}
+
+TEST(Reparametrize, LabelsFollowAndEveryAlgorithmRuns) {
+  const TriMesh input = synth::cylinder({.radius = 3.0, .length = 12.0, .resolution = 0.4, .capped = true});
+  for (const char* name : {"delaunay", "frontal", "meshadapt"}) {
+    GmshRemeshOptions o;
+    o.algorithm = parse_gmsh_algorithm(name);
+    EXPECT_EQ(gmsh_algorithm_name(o.algorithm), name);
+    const GmshRemeshResult g = reparametrize(input, uniform(input, 0.9), o);
+    const mesh::Statistics s = mesh::statistics(g.result.mesh);
+    EXPECT_TRUE(s.closed) << name;
+    ASSERT_TRUE(g.result.mesh.has_labels()) << name;
+    EXPECT_EQ(std::set<int>(g.result.mesh.labels.begin(), g.result.mesh.labels.end()), (std::set<int>{1, 2, 3})) << name;
+    for (size_t t = 0; t < g.result.mesh.triangles.size(); ++t) {
+      if (g.result.mesh.labels[t] != 2) continue;
+      for (int v : g.result.mesh.triangles[t]) EXPECT_NEAR(g.result.mesh.points[v].z(), 0.0, 1e-6);
+    }
+  }
+}
+
+// A graded field (fine at one daughter, coarse elsewhere): Gmsh follows it through the callback.
+TEST(Reparametrize, FollowsAGradedField) {
+  const TriMesh input = synth::bifurcation({.resolution = 0.4});
+  std::vector<Sym3> field;
+  for (const Vec3& p : input.points) field.push_back(sizing::isotropic_metric(p.x() > 3.0 ? 0.4 : 1.0));
+  const GmshRemeshResult g = reparametrize(input, field, {});
+  EXPECT_EQ(mesh::statistics(g.result.mesh).boundary_loops, 3);
+  double fine = 0.0, coarse = 0.0;
+  int n_fine = 0, n_coarse = 0;
+  for (const Triangle& f : g.result.mesh.triangles) {
+    const Vec3 c = (g.result.mesh.points[f[0]] + g.result.mesh.points[f[1]] + g.result.mesh.points[f[2]]) / 3.0;
+    const double l = (g.result.mesh.points[f[0]] - g.result.mesh.points[f[1]]).norm();
+    if (c.x() > 6.0) fine += l, ++n_fine;
+    if (c.x() < -1.0 || c.z() < -4.0) coarse += l, ++n_coarse;
+  }
+  ASSERT_GT(n_fine, 0);
+  ASSERT_GT(n_coarse, 0);
+  EXPECT_NEAR(fine / n_fine, 0.4, 0.12);
+  EXPECT_GT(coarse / n_coarse, 1.5 * fine / n_fine);  // the coarse part also meets the chord bound: < 1
+  EXPECT_GT(g.result.stats.edges_in_unit_range, 0.75);  // against the field it met
+}
+
+TEST(Reparametrize, BadOptionsAndFieldsAreErrors) {
+  const TriMesh input = synth::sphere({.radius = 3.0, .resolution = 0.8});
+  EXPECT_THROW(parse_gmsh_algorithm("bamg2"), OptionError);
+  EXPECT_THROW(reparametrize(input, std::vector<Sym3>(3, sizing::isotropic_metric(1.0)), {}), InputError);
+  GmshRemeshOptions o;
+  o.classify_angle_deg = 0.0;
+  EXPECT_THROW(reparametrize(input, uniform(input, 1.0), o), OptionError);
+}
+
+}  // namespace
+}  // namespace vesselmesh::remesh
