@@ -121,11 +121,11 @@ Command add_anastomosis(CLI::App& parent) {
             synth::AnastomosisOptions options = state->shape;
             const ShapeCommon& c = state->common;
             options.resolution = c.resolution, options.jitter = c.jitter, options.seed = c.seed;
+            io::surface_format(c.output);  // a bad name fails before the work
             const synth::AnastomosisLandmarks l = synth::anastomosis_landmarks(options);
             TerminalReporter reporter(c.common.quiet);
             reporter.info("building the anastomosis: implicit surface, flying edges, relaxation, three cuts");
             const TriMesh mesh = synth::anastomosis(options);
-            io::surface_format(c.output);
             io::write_surface(c.output, mesh);
             const mesh::Statistics st = mesh::statistics(mesh);
             if (c.common.json) {

@@ -13,9 +13,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 namespace vesselmesh::remesh {
 namespace {
@@ -38,6 +41,44 @@ double smallest_size(const Sym3& m) {
   sizing::metric_sizes(m, sizes, directions);
   return sizes.minCoeff();
 }
+
+// Gmsh's options and size callback outlive a session: the options set here are put back and the
+// callback (it refers to this call's field) removed when the scope ends, error or not, so that
+// later Gmsh work in the same process (the volume's tetrahedra) starts from what it expects.
+class ScopedOptions {
+ public:
+  ScopedOptions() = default;
+  ScopedOptions(const ScopedOptions&) = delete;
+  ScopedOptions& operator=(const ScopedOptions&) = delete;
+  ~ScopedOptions() {
+    if (callback_) {
+      try {
+        gmsh::model::mesh::removeSizeCallback();  // it refers to this call's field
+      } catch (...) {
+      }
+    }
+    for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) {
+      try {
+        gmsh::option::setNumber(it->first, it->second);
+      } catch (...) {  // a destructor must not throw; the option keeps its value
+      }
+    }
+  }
+  void set(const std::string& name, double value) {
+    double old = 0.0;
+    gmsh::option::getNumber(name, old);
+    saved_.emplace_back(name, old);
+    gmsh::option::setNumber(name, value);
+  }
+  void size_callback(std::function<double(int, int, double, double, double)> callback) {
+    gmsh::model::mesh::setSizeCallback(std::move(callback));
+    callback_ = true;
+  }
+
+ private:
+  bool callback_ = false;
+  std::vector<std::pair<std::string, double>> saved_;
+};
 
 std::string where(const Vec3& p) { return fmt::format("({:.4g}, {:.4g}, {:.4g})", p.x(), p.y(), p.z()); }
 
@@ -80,6 +121,7 @@ GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& me
   std::vector<int> patch_of;  // per output triangle
   std::vector<std::pair<int, Vec3>> empty_patches;
   io::GmshSession session;
+  ScopedOptions options;
   io::call_gmsh("remeshing by Gmsh (reparametrization)", [&] {
     gmsh::model::add("surface");
     gmsh::model::addDiscreteEntity(2, 1);
@@ -106,19 +148,18 @@ GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& me
     out.patches = static_cast<int>(surfaces.size());
     reporter.progress("Gmsh: classifying and parametrizing patches", 1.0);
 
-    gmsh::option::setNumber("General.NumThreads", 1);  // the size callback is ours and serial
-    gmsh::option::setNumber("Mesh.Algorithm", gmsh_code(o.algorithm));
-    gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
-    gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
-    gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
-    gmsh::option::setNumber("Mesh.MeshSizeMin", 0.5 * least);
-    gmsh::option::setNumber("Mesh.MeshSizeMax", 2.0 * most);
-    gmsh::model::mesh::setSizeCallback([&model](int, int, double x, double y, double z) {
+    options.set("General.NumThreads", 1);  // the size callback is ours and serial
+    options.set("Mesh.Algorithm", gmsh_code(o.algorithm));
+    options.set("Mesh.MeshSizeFromPoints", 0);
+    options.set("Mesh.MeshSizeFromCurvature", 0);
+    options.set("Mesh.MeshSizeExtendFromBoundary", 0);
+    options.set("Mesh.MeshSizeMin", 0.5 * least);
+    options.set("Mesh.MeshSizeMax", 2.0 * most);
+    options.size_callback([&model](int, int, double x, double y, double z) {
       return smallest_size(model.project(Vec3(x, y, z)).metric);
     });
     reporter.progress("Gmsh: meshing the patches", 0.0);
     gmsh::model::mesh::generate(2);
-    gmsh::model::mesh::removeSizeCallback();
     reporter.progress("Gmsh: meshing the patches", 1.0);
 
     std::vector<std::size_t> tags;

@@ -5,6 +5,7 @@
 #include "sizing/metric.h"
 #include "synth/bifurcation.h"
 #include "synth/shapes.h"
+#include "volume/fill.h"
 
 #include <gtest/gtest.h>
 
@@ -82,6 +83,20 @@ TEST(Reparametrize, FollowsAGradedField) {
   EXPECT_NEAR(fine / n_fine, 0.4, 0.12);
   EXPECT_GT(coarse / n_coarse, 1.5 * fine / n_fine);  // the coarse part also meets the chord bound: < 1
   EXPECT_GT(g.result.stats.edges_in_unit_range, 0.75);  // against the field it met
+}
+
+// Gmsh's options and the size callback are put back: the volume's tetrahedra come out the same
+// before and after a Gmsh remeshing in the same process, also after one that failed.
+TEST(Reparametrize, LeavesGmshAsItFoundIt) {
+  const TriMesh closed = synth::cylinder({.radius = 2.0, .length = 6.0, .resolution = 0.5, .capped = true});
+  const auto tets = [&] {
+    return volume::fill_tetrahedra(closed.points, closed.triangles, volume::FillAlgorithm::delaunay).tets.size();
+  };
+  const size_t before = tets();
+  // Sizes far below the closed cylinder's 0.5: Gmsh's size bounds, were they left, would refine it.
+  const TriMesh input = synth::cylinder({.radius = 1.0, .length = 3.0, .resolution = 0.2});
+  reparametrize(input, uniform(input, 0.12), {});
+  EXPECT_EQ(tets(), before);
 }
 
 TEST(Reparametrize, BadOptionsAndFieldsAreErrors) {
