@@ -202,6 +202,7 @@ Command add_remesh_command(CLI::App& parent) {
               if (!gmsh) return remesh::adapt(input, m, options, reporter);
               remesh::GmshRemeshResult r = remesh::reparametrize(input, m, gmsh_options, reporter);
               patches = r.patches;
+              gmsh_options.size_factor = r.size_factor;  // Gmsh's calibration on this input, for the next run
               return std::move(r.result);
             };
             const remesh::RemeshResult result =

@@ -135,8 +135,9 @@ GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& me
   TriMesh mesh;
   // Gmsh's edges come out shorter than asked on some inputs (0.46 of the size on the aortic arch,
   // whatever the size; right on a pipe): the median edge is measured in the field and the sizes
-  // handed to Gmsh scaled by its inverse, twice at most.
-  double factor = 1.0;
+  // handed to Gmsh scaled by its inverse, twice at most. A run may start from an earlier run's factor.
+  if (!(o.size_factor > 0.0) || !std::isfinite(o.size_factor)) throw OptionError("the size factor must be positive");
+  double factor = o.size_factor;
   for (int pass = 0;; ++pass) {
     mesh = TriMesh{};
     std::vector<std::pair<int, Vec3>> empty_patches;
@@ -251,6 +252,7 @@ GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& me
       mesh.labels[t] = input.labels[model.project(centroid).triangle];
     }
   }
+  out.size_factor = factor;
   out.result.mesh = std::move(mesh);
   out.result.metric = std::move(metric);
   out.result.stats = measure(out.result.mesh, out.result.metric, model, o.remesh.input_radius, &hints);

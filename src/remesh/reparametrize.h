@@ -35,11 +35,13 @@ struct GmshRemeshOptions {
   double classify_angle_deg = 40.0;  // patches split where normals turn more than this
   double curve_angle_deg = 180.0;    // curves split where they turn more than this (180: never)
   RemeshOptions remesh;              // distance bounds, local radius, features: as the native engine
+  double size_factor = 1.0;          // the sizes handed to Gmsh times this at first (a calibration)
 };
 
 struct GmshRemeshResult {
   RemeshResult result;
   int patches = 0;  // surfaces Gmsh classified and parametrized
+  double size_factor = 1.0;  // what the calibration settled on: hand it to the next run on this input
 };
 
 GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& metrics, const GmshRemeshOptions& options,

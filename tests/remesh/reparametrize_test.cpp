@@ -43,6 +43,13 @@ TEST(Reparametrize, OpenPipeToAUniformSize) {
   EXPECT_GT(ratio, 0.9);
   EXPECT_LT(ratio, 1.5);
   EXPECT_EQ(g.result.metric.size(), g.result.mesh.points.size());
+  EXPECT_DOUBLE_EQ(g.size_factor, 1.0);  // Gmsh meets sizes on a pipe: no calibration
+  // Started 2.5 times too fine, the calibration brings the edges back to the field.
+  GmshRemeshOptions fine;
+  fine.size_factor = 0.4;
+  const GmshRemeshResult c = reparametrize(input, uniform(input, h), fine);
+  EXPECT_NEAR(c.size_factor, 1.0, 0.3);
+  EXPECT_NEAR(mesh::statistics(c.result.mesh).edge_length.mean, h, 0.25 * h);
 }
 
 TEST(Reparametrize, LabelsFollowAndEveryAlgorithmRuns) {
