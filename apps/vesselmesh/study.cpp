@@ -11,7 +11,7 @@ Command add_study_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand(
       "study",
       "The paper's experiment on any vessel, from a TOML study file (surface, flow case, triangles, [reference] "
-      "levels/factor, [volume], [post] time, [[ring]] and [[point]]; see examples/ and src/study/study.h): the four "
+      "levels/factor, [volume], [post] time, [[ring]], [[point]], [[end]]; see examples/ and src/study/study.h): the four "
       "surface meshes (uniform, distance, curvature, anisotropic) with the same triangle count, a uniform refinement "
       "series whose finest level is the reference, their boundary-layer volume meshes, the flow case on each, and WSS "
       "on the rings and points against the reference. Writes DIR/report.md and DIR/report.html (Table 1, WSS along "

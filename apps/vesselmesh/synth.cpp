@@ -36,21 +36,27 @@ void add_shape_options(CLI::App& app, ShapeCommon& c, double default_resolution)
   add_common_options(app, c.common);
 }
 
-int write_shape(const ShapeCommon& c, const std::string& shape, const TriMesh& mesh) {
+// Writes the shape and says what it wrote; `extra` (JSON keys) and `notes` (lines) add what a
+// shape has to say of itself.
+int write_shape(const ShapeCommon& c, const std::string& shape, const TriMesh& mesh, const Json& extra = Json::object(),
+                const std::vector<std::string>& notes = {}) {
   io::surface_format(c.output);
   io::write_surface(c.output, mesh);
   TerminalReporter reporter(c.common.quiet);
   const mesh::Statistics st = mesh::statistics(mesh);
   if (c.common.json) {
-    print_json({{"shape", shape}, {"output", c.output}, {"units", "mm"}, {"points", st.points},
-                {"triangles", st.triangles}, {"closed", st.closed}, {"boundary_loops", st.boundary_loops},
-                {"area", round_to(st.area)}, {"edge_length", {{"min", round_to(st.edge_length.min)},
-                                                              {"mean", round_to(st.edge_length.mean)},
-                                                              {"max", round_to(st.edge_length.max)}}},
-                {"min_angle_deg", round_to(st.min_angle.min)}});
+    Json json = {{"shape", shape}, {"output", c.output}, {"units", "mm"}, {"points", st.points},
+                 {"triangles", st.triangles}, {"closed", st.closed}, {"boundary_loops", st.boundary_loops},
+                 {"area", round_to(st.area)}, {"edge_length", {{"min", round_to(st.edge_length.min)},
+                                                               {"mean", round_to(st.edge_length.mean)},
+                                                               {"max", round_to(st.edge_length.max)}}},
+                 {"min_angle_deg", round_to(st.min_angle.min)}};
+    for (const auto& [key, value] : extra.items()) json[key] = value;
+    print_json(json);
   } else {
     reporter.info(fmt::format("wrote {} ({} points, {} triangles, mean edge {:.3g} mm) to {}", shape, st.points,
                               st.triangles, st.edge_length.mean, c.output));
+    for (const std::string& line : notes) reporter.info(line);
   }
   return 0;
 }
@@ -126,34 +132,26 @@ Command add_anastomosis(CLI::App& parent) {
             TerminalReporter reporter(c.common.quiet);
             reporter.info("building the anastomosis: implicit surface, flying edges, relaxation, three cuts");
             const TriMesh mesh = synth::anastomosis(options);
-            io::write_surface(c.output, mesh);
-            const mesh::Statistics st = mesh::statistics(mesh);
-            if (c.common.json) {
-              Json ends = Json::array();
-              for (const synth::NamedEnd& e : l.ends)
-                ends.push_back({{"name", e.name}, {"center", point_json(e.end.center)},
-                                {"normal", point_json(e.end.normal)}, {"radius", round_to(e.end.radius)}});
-              print_json({{"shape", "anastomosis"}, {"output", c.output}, {"units", "mm"}, {"points", st.points},
-                          {"triangles", st.triangles}, {"boundary_loops", st.boundary_loops},
-                          {"area", round_to(st.area)}, {"edge_length", {{"min", round_to(st.edge_length.min)},
-                                                                        {"mean", round_to(st.edge_length.mean)},
-                                                                        {"max", round_to(st.edge_length.max)}}},
-                          {"min_angle_deg", round_to(st.min_angle.min)}, {"ends", ends},
-                          {"heel", point_json(l.heel)}, {"toe", point_json(l.toe)}, {"floor", point_json(l.floor)},
-                          {"ring1", {{"point", point_json(l.ring1_point)}, {"normal", point_json(l.ring1_normal)}}},
-                          {"ring2", {{"point", point_json(l.ring2_point)}, {"normal", point_json(l.ring2_normal)}}}});
-              return 0;
-            }
-            reporter.info(fmt::format("wrote anastomosis ({} points, {} triangles, mean edge {:.3g} mm) to {}", st.points,
-                                      st.triangles, st.edge_length.mean, c.output));
+            Json ends = Json::array();
+            std::vector<std::string> notes;
             auto xyz = [](const Vec3& p) { return fmt::format("{:.4g},{:.4g},{:.4g}", p.x(), p.y(), p.z()); };
-            for (const synth::NamedEnd& e : l.ends)
-              reporter.info(fmt::format("  end {:7} centre {}  normal {}  radius {:.4g} mm", e.name, xyz(e.end.center),
-                                        xyz(e.end.normal), e.end.radius));
-            reporter.info(fmt::format("  heel {}  toe {}  floor {} (mm)", xyz(l.heel), xyz(l.toe), xyz(l.floor)));
-            reporter.info(fmt::format("  ring 1 (heel-toe) point {} normal {}", xyz(l.ring1_point), xyz(l.ring1_normal)));
-            reporter.info(fmt::format("  ring 2 (distal host) point {} normal {}", xyz(l.ring2_point), xyz(l.ring2_normal)));
-            return 0;
+            for (const synth::NamedEnd& e : l.ends) {
+              ends.push_back({{"name", e.name}, {"center", point_json(e.end.center)},
+                              {"normal", point_json(e.end.normal)}, {"radius", round_to(e.end.radius)}});
+              notes.push_back(fmt::format("  end {:7} centre {}  normal {}  radius {:.4g} mm", e.name,
+                                          xyz(e.end.center), xyz(e.end.normal), e.end.radius));
+            }
+            notes.push_back(fmt::format("  heel {}  toe {}  floor {} (mm)", xyz(l.heel), xyz(l.toe), xyz(l.floor)));
+            notes.push_back(fmt::format("  ring 1 (heel-toe) point {} normal {}", xyz(l.ring1_point), xyz(l.ring1_normal)));
+            notes.push_back(
+                fmt::format("  ring 2 (distal host) point {} normal {}", xyz(l.ring2_point), xyz(l.ring2_normal)));
+            const Json extra = {{"ends", ends},
+                                {"heel", point_json(l.heel)},
+                                {"toe", point_json(l.toe)},
+                                {"floor", point_json(l.floor)},
+                                {"ring1", {{"point", point_json(l.ring1_point)}, {"normal", point_json(l.ring1_normal)}}},
+                                {"ring2", {{"point", point_json(l.ring2_point)}, {"normal", point_json(l.ring2_normal)}}}};
+            return write_shape(c, "anastomosis", mesh, extra, notes);
           }};
 }
 

@@ -80,10 +80,8 @@ class ScopedOptions {
   std::vector<std::pair<std::string, double>> saved_;
 };
 
-// The median edge length of a mesh in the field at its points.
-double median_edge_length(const TriMesh& mesh, const SurfaceModel& model) {
-  std::vector<Sym3> metric(mesh.points.size());
-  for (size_t v = 0; v < mesh.points.size(); ++v) metric[v] = model.project(mesh.points[v]).metric;
+// The median edge length of a mesh in a metric given at its points.
+double median_edge_length(const TriMesh& mesh, const std::vector<Sym3>& metric) {
   std::vector<double> lengths;
   for (const Triangle& f : mesh.triangles)
     for (int c = 0; c < 3; ++c) {
@@ -122,6 +120,7 @@ GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& me
                                  metrics.size(), input.points.size()));
   if (!(o.classify_angle_deg > 0.0 && o.classify_angle_deg < 180.0))
     throw OptionError("the classification angle must be in (0, 180) degrees");
+  if (!(o.size_factor > 0.0) || !std::isfinite(o.size_factor)) throw OptionError("the size factor must be positive");
   const auto start = std::chrono::steady_clock::now();
   const std::vector<Sym3> field = effective_metric(input, metrics, o.remesh);
   const SurfaceModel model(input, field, o.remesh.features);
@@ -136,8 +135,9 @@ GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& me
   // Gmsh's edges come out shorter than asked on some inputs (0.46 of the size on the aortic arch,
   // whatever the size; right on a pipe): the median edge is measured in the field and the sizes
   // handed to Gmsh scaled by its inverse, twice at most. A run may start from an earlier run's factor.
-  if (!(o.size_factor > 0.0) || !std::isfinite(o.size_factor)) throw OptionError("the size factor must be positive");
   double factor = o.size_factor;
+  std::vector<Sym3> metric;  // the field at the mesh's points (their closest input points)
+  std::vector<int> hints;    // and the input triangles they lie on
   for (int pass = 0;; ++pass) {
     mesh = TriMesh{};
     std::vector<std::pair<int, Vec3>> empty_patches;
@@ -218,7 +218,14 @@ GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& me
                                    "to cut it smaller, or use the native engine",
                                    empty_patches[0].first, out.patches, where(empty_patches[0].second),
                                    empty_patches.size() > 1 ? fmt::format(" and on {} more", empty_patches.size() - 1) : ""));
-    const double median = median_edge_length(mesh, model);
+    metric.assign(mesh.points.size(), Sym3());
+    hints.assign(mesh.points.size(), -1);
+    for (size_t v = 0; v < mesh.points.size(); ++v) {
+      const Projection p = model.project(mesh.points[v]);
+      metric[v] = p.metric;
+      hints[v] = p.triangle;
+    }
+    const double median = median_edge_length(mesh, metric);
     if (std::abs(median - 1.0) <= 0.15 || pass == 2) break;
     reporter.info(fmt::format("Gmsh's edges are {:.2f} of the length asked: asking {:.2f} times the size", median,
                               1.0 / median));
@@ -227,7 +234,8 @@ GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& me
 
   // One surface: shared curve nodes merged, oriented like the input (outward), then checked
   // against the input's topology.
-  mesh::clean(mesh, {.keep_largest_component = false, .orient_outward = true, .find_self_intersections = false});
+  const mesh::CleanReport cleaned =
+      mesh::clean(mesh, {.keep_largest_component = false, .orient_outward = true, .find_self_intersections = false});
   const mesh::Statistics before = mesh::statistics(input), after = mesh::statistics(mesh);
   if (after.components != before.components || after.boundary_loops != before.boundary_loops ||
       after.genus != before.genus) {
@@ -237,12 +245,12 @@ GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& me
                                  after.components, after.boundary_loops, after.genus, before.components,
                                  before.boundary_loops, before.genus));
   }
-  std::vector<Sym3> metric(mesh.points.size());
-  std::vector<int> hints(mesh.points.size());
+  // The field at the points, as measured for the calibration, follows them through the clean.
+  std::vector<Sym3> kept_metric(mesh.points.size());
+  std::vector<int> kept_hints(mesh.points.size());
   for (size_t v = 0; v < mesh.points.size(); ++v) {
-    const Projection p = model.project(mesh.points[v]);
-    metric[v] = p.metric;
-    hints[v] = p.triangle;
+    kept_metric[v] = metric[cleaned.point_origin[v]];
+    kept_hints[v] = hints[cleaned.point_origin[v]];
   }
   if (input.has_labels()) {
     mesh.labels.resize(mesh.triangles.size());
@@ -254,8 +262,8 @@ GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& me
   }
   out.size_factor = factor;
   out.result.mesh = std::move(mesh);
-  out.result.metric = std::move(metric);
-  out.result.stats = measure(out.result.mesh, out.result.metric, model, o.remesh.input_radius, &hints);
+  out.result.metric = std::move(kept_metric);
+  out.result.stats = measure(out.result.mesh, out.result.metric, model, o.remesh.input_radius, &kept_hints);
   out.result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -132,7 +132,7 @@ Geometry make_geometry(const AnastomosisOptions& o) {
   const double lift = std::clamp(g.rg - g.rh + g.fillet, 0.0, 0.75 * g.rh);
   g.end = Vec3(0.0, 0.0, lift);
   // Straight until the graft is clear of the host by the fillet, then the turn.
-  const double clear = (g.rg + g.rh + g.fillet - lift) / std::sin(alpha) + g.h;
+  const double clear = (g.rg + g.rh + g.fillet - lift) / std::sin(alpha) + 0.05 * g.rg;  // the shape does not depend on the resolution
   g.p1 = g.end - clear * g.direction;
   g.arc_radius = o.graft_bend_radius > 0.0 ? o.graft_bend_radius : 4.0 * g.rg;
   g.sweep = beta;
@@ -199,10 +199,8 @@ Geometry make_geometry(const AnastomosisOptions& o) {
   return g;
 }
 
-}  // namespace
 
-AnastomosisLandmarks anastomosis_landmarks(const AnastomosisOptions& o) {
-  const Geometry g = make_geometry(o);
+AnastomosisLandmarks landmarks_of(const Geometry& g) {
   const ImplicitFunction f = [&g](const Vec3& p) { return g.f(p); };
   const double dh = 1e-3 * g.h;
   AnastomosisLandmarks l;
@@ -220,6 +218,10 @@ AnastomosisLandmarks anastomosis_landmarks(const AnastomosisOptions& o) {
   return l;
 }
 
+}  // namespace
+
+AnastomosisLandmarks anastomosis_landmarks(const AnastomosisOptions& o) { return landmarks_of(make_geometry(o)); }
+
 TriMesh anastomosis(const AnastomosisOptions& o) {
   const Geometry g = make_geometry(o);
   const ImplicitFunction f = [&g](const Vec3& p) { return g.f(p); };
@@ -234,7 +236,7 @@ TriMesh anastomosis(const AnastomosisOptions& o) {
     throw OptionError(fmt::format("--resolution {} needs a grid of {:.3g} points: choose a coarser one", g.h,
                                   box.prod() / (g.h * g.h * g.h)));
   std::vector<TubeEnd> ends;
-  for (const NamedEnd& e : anastomosis_landmarks(o).ends) ends.push_back(e.end);
+  for (const NamedEnd& e : landmarks_of(g).ends) ends.push_back(e.end);
   return open_tube_surface(f, lo, hi, ends, {.resolution = g.h, .jitter = o.jitter, .seed = o.seed, .reach = kReach});
 }
 

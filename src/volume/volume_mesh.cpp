@@ -78,7 +78,8 @@ Wall extract_wall(const TriMesh& surface, const std::vector<analysis::OpenEnd>& 
 void assign_tags(const std::vector<analysis::OpenEnd>& ends, VolumeOptions options, VolumeReport& report) {
   const int count = static_cast<int>(ends.size());
   if (!options.end_at.empty()) {
-    if (!options.end_names.empty()) throw OptionError("name the ends by --end-names or by --end, not both");
+    if (!options.end_names.empty() || options.inlet >= 0)
+      throw OptionError("name the ends by --end, or by --inlet / --end-names, not both");
     options.end_names = names_of_ends(ends, options.end_at);
   }
   if (options.inlet >= count || options.inlet < -1)

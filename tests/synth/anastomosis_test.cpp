@@ -99,8 +99,11 @@ TEST(Anastomosis, BentGraftArrivesFlatterAndTheLandmarksLieOnTheSurface) {
   EXPECT_GT(l.heel.z(), o.host_radius);
   EXPECT_GT(l.toe.z(), o.host_radius);
   EXPECT_NEAR(l.floor.z(), -o.host_radius, 1e-3);
+  // On the exact surface, so off the triangulation by at most its facets' depth: l^2 / (2 rho) for
+  // edges l = 0.3 mm over the heel's fillet (rho about a quarter of its 1 mm width) is 0.18 mm;
+  // found 0.04 at most.
   const mesh::SurfaceLocator locator(m);
-  for (const Vec3& p : {l.heel, l.toe, l.floor}) EXPECT_LT((locator.closest(p).point - p).norm(), 0.02);
+  for (const Vec3& p : {l.heel, l.toe, l.floor}) EXPECT_LT((locator.closest(p).point - p).norm(), 0.06);
   // Ring 1 runs round the mouth of the junction, through heel and toe.
   const std::vector<Vec3> values(m.points.size(), Vec3::Zero());
   const post::Ring ring1 = post::cut_ring(m, values, {.name = "1", .point = l.ring1_point, .normal = l.ring1_normal, .reference = {}});

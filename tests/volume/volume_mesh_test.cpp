@@ -166,6 +166,12 @@ TEST(Volume, EndsNamedByPointsWhateverTheirOrder) {
   EXPECT_EQ(names_of_ends(ends, named), (std::vector<std::string>{"inlet", "outlet", "stump"}));
   // Too few, two on one end, one far from every end: each an OptionError naming the ends.
   EXPECT_THROW(names_of_ends(ends, {named[0], named[1]}), OptionError);
+  // Both ways of naming at once: the volume refuses before any work.
+  VolumeOptions both;
+  both.end_at = named;
+  both.inlet = 1;
+  both.layer.layers = 0;
+  EXPECT_THROW(build_volume(TriMesh{}, ends, {}, both), OptionError);
   EXPECT_THROW(names_of_ends(ends, {{"a", {0, 0, 0}}, {"b", {1, 0, 0}}, {"c", {40, 0, 0}}}), OptionError);
   try {
     names_of_ends(ends, {{"a", {0, 0, 0}}, {"b", {40, 0, 0}}, {"c", {-15, 30, 0}}});
