@@ -94,7 +94,7 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
   const io::TomlReader r{path};
   FlowCase c;
   c.path = path;
-  r.known_keys(root, "", {"mesh", "length_unit", "fluid", "time", "boundary", "solver"});
+  r.known_keys(root, "", {"mesh", "length_unit", "fluid", "time", "boundary", "solver", "output"});
 
   const std::string mesh = r.text(root["mesh"], "mesh", "");
   if (mesh.empty()) r.fail("mesh", "missing: name the volume mesh (MSH 4.1 from `vesselmesh volume`)");
@@ -200,6 +200,13 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
   if (solver && !solver.is_table()) r.fail("solver", "expected a table [solver]");
   if (solver) r.known_keys(*solver.as_table(), "solver", {"petsc_options"});
   c.petsc_options = r.text(solver["petsc_options"], "solver.petsc_options", "");
+
+  const io::TomlView output = root["output"];
+  if (output && !output.is_table()) r.fail("output", "expected a table [output]");
+  if (output) r.known_keys(*output.as_table(), "output", {"wss_method"});
+  c.wss_method = r.text(output["wss_method"], "output.wss_method", c.wss_method);
+  if (c.wss_method != "quadratic" && c.wss_method != "face")
+    r.fail("output.wss_method", fmt::format("\"{}\": expected quadratic or face", c.wss_method));
   return c;
 }
 

@@ -15,7 +15,8 @@
 // Added keys: [boundary] harmonics (womersley: the waveform's Fourier harmonics kept, default
 // 20); [time] picard (extra Oseen iterations per step, default 0), steady_tolerance
 // (1e-6), steady_iterations (50); [boundary] backflow (the traction boundaries' backflow
-// stabilization coefficient, default 1).
+// stabilization coefficient, default 1); [output] wss_method = "quadratic" | "face" (how the
+// wall shear stress is taken from the velocity, post/wss.h; default quadratic).
 // A positive flow enters the domain, a negative one leaves it.
 #pragma once
 
@@ -72,6 +73,7 @@ struct FlowCase {
   double backflow = 1.0;
   std::vector<BoundaryCondition> boundaries;
   std::string petsc_options;
+  std::string wss_method = "quadratic";  // post::parse_wss_method
 };
 
 std::string to_string(BoundaryType type);

@@ -65,6 +65,12 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   const post::WallSurface wall = post::extract_wall(mesh, all, wall_tags);
   std::vector<Vec3> si(mesh.points.size());
   for (size_t i = 0; i < si.size(); ++i) si[i] = mesh.points[i] * fc.length_scale;
+  const post::WallShearOperator wall_shear(wall, all, si, post::parse_wss_method(fc.wss_method));
+  reporter.info(fmt::format("wall shear stress: {} method on {} wall points{}", fc.wss_method, wall.mesh.num_points(),
+                            wall_shear.face_fallbacks() > 0
+                                ? fmt::format(" ({} by their faces: too few neighbours for a quadratic)",
+                                              wall_shear.face_fallbacks())
+                                : ""));
 
   if (writer) std::filesystem::create_directories(output_dir);
   if (ranks > 1) reporter.info(fmt::format("{} MPI processes, about {} points each", ranks, mesh.num_points() / ranks));
@@ -97,6 +103,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     j["dofs"] = summary.dofs;
     j["ranks"] = ranks;
     j["steady"] = fc.steady;
+    j["wss_method"] = fc.wss_method;
     if (fc.period > 0.0) j["period"] = fc.period;
     if (summary.indices_end > summary.indices_start)
       j["indices"] = {{"file", "indices.vtp"}, {"start_s", summary.indices_start}, {"end_s", summary.indices_end},
@@ -139,7 +146,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     io::write_vtu(output_dir + "/fluid_" + name + ".vtu", mesh,
                   {Field::vector("velocity", ns.velocity()), Field::scalar("pressure", pressure)});
     const std::vector<Vec3> tau =
-        computed ? *computed : post::wall_shear_stress(wall, all, si, ns.velocity(), fc.viscosity);
+        computed ? *computed : wall_shear.apply(ns.velocity(), fc.viscosity);
     std::vector<double> magnitude(tau.size());
     for (size_t i = 0; i < tau.size(); ++i) magnitude[i] = tau[i].norm();
     io::write_vtp(output_dir + "/wall_" + name + ".vtp", wall.mesh,
@@ -180,7 +187,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
         std::vector<Vec3> tau;
         const bool in_window = writer && r.time >= window_start - 0.5 * fc.dt;
         if (in_window) {
-          tau = post::wall_shear_stress(wall, all, si, ns.velocity(), fc.viscosity);
+          tau = wall_shear.apply(ns.velocity(), fc.viscosity);
           indices.add(r.time, tau);
         }
         if (r.step % fc.save_every == 0 || k + 1 == steps) save(r.time, in_window ? &tau : nullptr);

@@ -483,6 +483,8 @@ TEST(Cli, SimulateRunsTheExampleCase) {
   const Json summary = Json::parse(read_text(tmp.path("out/summary.json")));
   EXPECT_EQ(summary["units"]["pressure"], "Pa");
   EXPECT_EQ(summary["units"]["points"], "mm");
+  EXPECT_EQ(summary["wss_method"], "quadratic");
+  EXPECT_NE(r.err.find("wall shear stress: quadratic method"), std::string::npos) << r.err;
   const std::string log = read_text(tmp.path("out/log.csv"));
   EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 4) << log;  // header and three steps
   EXPECT_NE(log.find("outlet_1_flux_m3_s"), std::string::npos);

@@ -53,6 +53,7 @@ TEST(FlowCase, ReadsTheContractKeys) {
   EXPECT_EQ(c.boundaries[1].type, BoundaryType::traction);
   EXPECT_EQ(c.boundaries[2].type, BoundaryType::wall);
   EXPECT_EQ(c.petsc_options, "-ksp_rtol 1e-8");
+  EXPECT_EQ(c.wss_method, "quadratic");
   EXPECT_NO_THROW(check_tags(c, {"wall", "inlet", "outlet_1"}));
 }
 
@@ -95,6 +96,12 @@ TEST(FlowCase, MistakesAreNamed) {
   expect_error(with(kContract, "mesh = \"volume.msh\"", ""), "mesh");
   expect_error(with(kContract, "profile = \"parabolic\"", "profile = \"poiseuille\""), "boundary[0].profile");
   expect_error(with(kContract, "flow = 5.0", "flow = 5.0\nharmonics = 4"), "only a womersley profile");
+  expect_error(kContract + std::string("[output]\nwss_method = \"spr\"\n"), "output.wss_method");
+  expect_error(kContract + std::string("[output]\nwss = \"face\"\n"), "output.wss");
+}
+
+TEST(FlowCase, WallShearMethodByName) {
+  EXPECT_EQ(parse_case(kContract + std::string("[output]\nwss_method = \"face\"\n"), "case.toml").wss_method, "face");
 }
 
 TEST(FlowCase, TagsMustMatchTheMesh) {
