@@ -5,8 +5,9 @@
 # The vessel: a straight pipe of radius 3 mm (vesselmesh synth cylinder, jitter 0.1), by default
 # 0.3 mm edges over 60 mm (about 1.1 M tetrahedra with 4 layers). Times: wall clock of the whole
 # command (reading, centerlines, layer, caps, fill, checks, writing), the best of three.
-# Interior: `vesselmesh volume --layers 0` (wall + caps filled by Gmsh Delaunay, then HXT) against
-# `tetgen -pqQ` on that same closed surface (the volume's boundary, as Medit .mesh).
+# Interior: `vesselmesh volume --layers 0` (wall + caps filled by Gmsh Delaunay, HXT, then TetGen's
+# library) against the `tetgen -pqQ` program on that same closed surface (the volume's boundary, as
+# Medit .mesh).
 set -euo pipefail
 build=${1:-build}
 resolution=${2:-0.3}
@@ -29,7 +30,7 @@ def best(cmd, repeats=3):
 
 pipe = f"{work}/pipe.stl"
 print(f"pipe: {pipe}")
-for algorithm in ["delaunay", "hxt"]:
+for algorithm in ["delaunay", "hxt", "tetgen"]:
     t, out = best([vm, "volume", pipe, "-o", f"{work}/full.msh", "--algorithm", algorithm, "--json", "-q"])
     j = json.loads(out)
     n = j["tetrahedra"]
@@ -39,11 +40,12 @@ for algorithm in ["delaunay", "hxt"]:
 
 # The interior alone, against TetGen on the same closed surface.
 rows = []
-for algorithm in ["delaunay", "hxt"]:
+for algorithm in ["delaunay", "hxt", "tetgen"]:
     t, out = best([vm, "volume", pipe, "-o", f"{work}/fill_{algorithm}.msh", "--layers", "0", "--algorithm", algorithm,
                    "--json", "-q"])
     j = json.loads(out)
-    rows.append((f"vesselmesh/Gmsh {algorithm}", j["tetrahedra"], t, j["dihedral_deg"]["min"]))
+    engine = "TetGen library" if algorithm == "tetgen" else f"Gmsh {algorithm}"
+    rows.append((f"vesselmesh/{engine}", j["tetrahedra"], t, j["dihedral_deg"]["min"]))
 subprocess.run([vm, "info", f"{work}/fill_delaunay.msh", "-o", f"{work}/closed.mesh", "-q"], check=True,
                capture_output=True)
 if shutil.which("tetgen"):

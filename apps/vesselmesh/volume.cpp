@@ -111,8 +111,9 @@ Command add_volume_command(CLI::App& parent) {
       ->capture_default_str();
   app->add_option("--algorithm", o->algorithm,
                   "Interior tetrahedra: delaunay (Gmsh's; the same mesh run after run), hxt (Gmsh's HXT: threaded, "
-                  "fewer slivers, but not the same mesh twice), or frontal (needs a Gmsh built with Netgen)")
-      ->check(CLI::IsMember({"delaunay", "frontal", "hxt"}))
+                  "fewer slivers, but not the same mesh twice), tetgen (TetGen 1.5: quality-bounded, the same mesh "
+                  "run after run), or frontal (needs a Gmsh built with Netgen)")
+      ->check(CLI::IsMember({"delaunay", "frontal", "hxt", "tetgen"}))
       ->capture_default_str();
   app->add_flag("--keep-prisms", o->volume.keep_prisms, "Write the layer's prisms instead of cutting them into tetrahedra");
   app->add_option("--inlet", o->volume.inlet, "The end that is the inlet, numbered from 0 as 'vesselmesh info' lists them "

@@ -3,6 +3,7 @@
 #include "io/gmsh_session.h"
 #include "mesh/error.h"
 #include "mesh/geometry.h"
+#include "volume/tetgen_fill.h"
 
 #include <fmt/format.h>
 #include <gmsh.h>
@@ -19,7 +20,8 @@ FillAlgorithm parse_fill_algorithm(const std::string& name) {
   if (name == "delaunay") return FillAlgorithm::delaunay;
   if (name == "frontal") return FillAlgorithm::frontal;
   if (name == "hxt") return FillAlgorithm::hxt;
-  throw OptionError(fmt::format("--algorithm {}: give delaunay, frontal or hxt", name));
+  if (name == "tetgen") return FillAlgorithm::tetgen;
+  throw OptionError(fmt::format("--algorithm {}: give delaunay, frontal, hxt or tetgen", name));
 }
 
 const char* fill_algorithm_name(FillAlgorithm algorithm) {
@@ -27,12 +29,40 @@ const char* fill_algorithm_name(FillAlgorithm algorithm) {
     case FillAlgorithm::delaunay: return "delaunay";
     case FillAlgorithm::frontal: return "frontal";
     case FillAlgorithm::hxt: return "hxt";
+    case FillAlgorithm::tetgen: return "tetgen";
   }
   return "?";
 }
 
+namespace {
+
+// TetGen's fill in our numbering: its first points are the boundary's, in index order.
+FillResult fill_by_tetgen(const std::vector<Vec3>& points, const std::vector<Triangle>& boundary,
+                          const Reporter& reporter) {
+  TetgenFill fill = tetgen_fill(points, boundary, {}, reporter);
+  std::vector<int> ours;  // per TetGen point
+  std::vector<char> used(points.size(), 0);
+  for (const Triangle& f : boundary)
+    for (int v : f) used[v] = 1;
+  for (size_t i = 0; i < points.size(); ++i)
+    if (used[i]) ours.push_back(static_cast<int>(i));
+  FillResult out;
+  out.points = points;
+  for (size_t i = ours.size(); i < fill.points.size(); ++i) {
+    ours.push_back(static_cast<int>(out.points.size()));
+    out.points.push_back(fill.points[i]);
+  }
+  out.tets = std::move(fill.tets);
+  for (Tet& t : out.tets)
+    for (int& v : t) v = ours[v];
+  return out;
+}
+
+}  // namespace
+
 FillResult fill_tetrahedra(const std::vector<Vec3>& points, const std::vector<Triangle>& boundary,
                            FillAlgorithm algorithm, int threads, const Reporter& reporter) {
+  if (algorithm == FillAlgorithm::tetgen) return fill_by_tetgen(points, boundary, reporter);
   // Gmsh node tags 1, 2, ... for the points the boundary uses, in index order (contiguous, so
   // that Gmsh's renumbering after meshing keeps them).
   std::vector<int> tag_of(points.size(), 0);

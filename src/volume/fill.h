@@ -3,7 +3,8 @@
 // bounding a volume Gmsh fills (sizes grow from the boundary's edge lengths; Gmsh's own
 // tetrahedron optimization runs, the boundary is never changed). Algorithms: Gmsh's Delaunay
 // (default), Frontal (needs a Gmsh built with Netgen; an OptionError otherwise) and HXT
-// (Marot et al. 2019, Gmsh's fastest, threaded).
+// (Marot et al. 2019, Gmsh's fastest, threaded); and TetGen (volume/tetgen_fill.h: the boundary
+// kept, quality-bounded, deterministic).
 #pragma once
 
 #include "mesh/reporter.h"
@@ -14,7 +15,7 @@
 
 namespace vesselmesh::volume {
 
-enum class FillAlgorithm { delaunay, frontal, hxt };
+enum class FillAlgorithm { delaunay, frontal, hxt, tetgen };
 FillAlgorithm parse_fill_algorithm(const std::string& name);
 const char* fill_algorithm_name(FillAlgorithm algorithm);
 

@@ -416,6 +416,14 @@ TEST(Cli, VolumeWritesTaggedMeshesThatQualityReadsBack) {
   EXPECT_TRUE(kv["closed_boundary"].get<bool>());
   EXPECT_EQ(kv["boundary_layer"]["layers_min"].get<int>(), 4);
   EXPECT_EQ(kv["boundary_triangles"]["wall"], j["boundary_triangles"]["wall"]);
+  // TetGen's fill: the same wall, named in the JSON; an unknown engine is exit 2.
+  const RunResult t = run({"volume", tmp.path("p.stl"), "-o", tmp.path("t.msh"), "--algorithm", "tetgen", "--json"});
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_EQ(t.json()["algorithm"], "tetgen");
+  EXPECT_EQ(t.json()["inverted"].get<int>(), 0);
+  EXPECT_TRUE(t.json()["closed_boundary"].get<bool>());
+  EXPECT_EQ(t.json()["boundary_triangles"]["wall"], j["boundary_triangles"]["wall"]);
+  EXPECT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.msh"), "--algorithm", "netgen"}).code, 2);
   EXPECT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.vtk")}).code, 2);
   EXPECT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.msh"), "--inlet", "5"}).code, 2);
   EXPECT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.msh"), "--thickness-ratio", "0.9"}).code, 2);
@@ -424,7 +432,7 @@ TEST(Cli, VolumeWritesTaggedMeshesThatQualityReadsBack) {
   EXPECT_EQ(closed.code, 2);
   EXPECT_NE(last_line(closed.err).find("no open or flat-capped end"), std::string::npos) << closed.err;
   EXPECT_EQ(run({"quality", tmp.path("p.stl")}).code, 2);
-  EXPECT_EQ(tmp.files(), (std::vector<std::string>{"p.stl", "s.stl", "v.msh", "v.vtu"}));
+  EXPECT_EQ(tmp.files(), (std::vector<std::string>{"p.stl", "s.stl", "t.msh", "v.msh", "v.vtu"}));
 }
 
 std::string read_text(const std::string& path) {

@@ -181,19 +181,33 @@ TEST(Volume, EndsNamedByPointsWhateverTheirOrder) {
   }
 }
 
-TEST(Volume, DelaunayGivesTheSameMeshRunAfterRun) {
+// Delaunay (the default) and TetGen give the same mesh run after run (HXT does not). TetGen's
+// fill meets the figures of every volume mesh (its interior least dihedral here 5.3 degrees,
+// measured; Delaunay's 8.4 on this short pipe, 1.9 on the remeshed anastomosis where TetGen's is
+// 7.3: the README's table).
+class Deterministic : public ::testing::TestWithParam<FillAlgorithm> {};
+
+TEST_P(Deterministic, TheSameMeshRunAfterRun) {
   const TriMesh pipe = synth::cylinder({.radius = 2.0, .length = 8.0, .resolution = 0.4, .jitter = 0.1});
   const auto ends = analysis::open_ends(pipe);
   const std::vector<double> radius(pipe.points.size(), 2.0);
-  const VolumeResult a = build_volume(pipe, ends, radius, {});
-  const VolumeResult b = build_volume(pipe, ends, radius, {});
+  VolumeOptions options;
+  options.algorithm = GetParam();
+  const VolumeResult a = build_volume(pipe, ends, radius, options);
+  const VolumeResult b = build_volume(pipe, ends, radius, options);
   EXPECT_EQ(a.mesh.points, b.mesh.points);
   EXPECT_EQ(a.mesh.tets, b.mesh.tets);
   EXPECT_EQ(a.mesh.boundary, b.mesh.boundary);
   const VolumeQuality q = measure_volume(a.mesh);
   EXPECT_EQ(q.inverted, 0);
   EXPECT_TRUE(q.closed);
+  std::printf("%s: %d tetrahedra, interior least dihedral %.2f deg\n", fill_algorithm_name(GetParam()), a.mesh.num_tets(),
+              q.min_dihedral_interior);
+  if (GetParam() == FillAlgorithm::tetgen) expect_sound(a, 4);
 }
+
+INSTANTIATE_TEST_SUITE_P(Algorithms, Deterministic, ::testing::Values(FillAlgorithm::delaunay, FillAlgorithm::tetgen),
+                         [](const auto& param) { return std::string(fill_algorithm_name(param.param)); });
 
 TEST(Volume, ASurfaceWithoutEndsIsAnError) {
   const TriMesh sphere = synth::sphere({.radius = 2.0, .resolution = 0.5});
