@@ -161,6 +161,9 @@ WallShearOperator::WallShearOperator(const WallSurface& wall, const std::vector<
       std::sort(ring.begin(), ring.end());
       ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
       ring.erase(std::remove(ring.begin(), ring.end(), p), ring.end());
+      // A point on top of this one (a degenerate mesh) fixes nothing and would weigh infinitely.
+      ring.erase(std::remove_if(ring.begin(), ring.end(), [&](int q) { return !((points[q] - points[p]).norm() > 0.0); }),
+                 ring.end());
       offsets.clear();
       for (int q : ring) offsets.push_back(points[q] - points[p]);
       stencil_weights[v] = quadratic_gradient_weights(offsets);
@@ -179,7 +182,8 @@ std::vector<Vec3> WallShearOperator::apply(const std::vector<Vec3>& velocity, do
   const size_t n_wall = volume_point_.size();
   std::vector<Vec3> tau(n_wall, Vec3::Zero());
   std::vector<double> weight(n_wall, 0.0);
-  for (size_t f = 0; f < faces_.size(); ++f) {
+  const bool faces_needed = method_ == WssMethod::face || fallbacks_ > 0;
+  for (size_t f = 0; faces_needed && f < faces_.size(); ++f) {
     const Face& face = faces_[f];
     if (!(face.area > 0.0)) continue;
     Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();  // grad(i, j) = d u_i / d x_j

@@ -34,35 +34,9 @@ const char* fill_algorithm_name(FillAlgorithm algorithm) {
   return "?";
 }
 
-namespace {
-
-// TetGen's fill in our numbering: its first points are the boundary's, in index order.
-FillResult fill_by_tetgen(const std::vector<Vec3>& points, const std::vector<Triangle>& boundary,
-                          const Reporter& reporter) {
-  TetgenFill fill = tetgen_fill(points, boundary, {}, reporter);
-  std::vector<int> ours;  // per TetGen point
-  std::vector<char> used(points.size(), 0);
-  for (const Triangle& f : boundary)
-    for (int v : f) used[v] = 1;
-  for (size_t i = 0; i < points.size(); ++i)
-    if (used[i]) ours.push_back(static_cast<int>(i));
-  FillResult out;
-  out.points = points;
-  for (size_t i = ours.size(); i < fill.points.size(); ++i) {
-    ours.push_back(static_cast<int>(out.points.size()));
-    out.points.push_back(fill.points[i]);
-  }
-  out.tets = std::move(fill.tets);
-  for (Tet& t : out.tets)
-    for (int& v : t) v = ours[v];
-  return out;
-}
-
-}  // namespace
-
 FillResult fill_tetrahedra(const std::vector<Vec3>& points, const std::vector<Triangle>& boundary,
                            FillAlgorithm algorithm, int threads, const Reporter& reporter) {
-  if (algorithm == FillAlgorithm::tetgen) return fill_by_tetgen(points, boundary, reporter);
+  if (algorithm == FillAlgorithm::tetgen) return tetgen_fill(points, boundary, {}, reporter);
   // Gmsh node tags 1, 2, ... for the points the boundary uses, in index order (contiguous, so
   // that Gmsh's renumbering after meshing keeps them).
   std::vector<int> tag_of(points.size(), 0);

@@ -48,23 +48,23 @@ std::string tetgen_reason(int code) {
 
 }  // namespace
 
-TetgenFill tetgen_fill(const std::vector<Vec3>& points, const std::vector<Triangle>& boundary,
+FillResult tetgen_fill(const std::vector<Vec3>& points, const std::vector<Triangle>& boundary,
                        const TetgenQuality& quality, const Reporter& reporter) {
-  // The points the boundary uses, in index order (others would become vertices of the mesh).
-  std::vector<int> index_of(points.size(), -1);
-  TetgenFill out;
+  // TetGen's points: those the boundary uses, in index order (others would become vertices of
+  // the mesh); `ours` leads back.
+  std::vector<int> index_of(points.size(), -1), ours;
   for (const Triangle& f : boundary)
     for (int v : f) index_of[v] = 0;
   for (size_t i = 0; i < points.size(); ++i)
     if (index_of[i] == 0) {
-      index_of[i] = static_cast<int>(out.points.size());
-      out.points.push_back(points[i]);
+      index_of[i] = static_cast<int>(ours.size());
+      ours.push_back(static_cast<int>(i));
     }
-  const int n = static_cast<int>(out.points.size());
+  const int n = static_cast<int>(ours.size());
   // TetGen reads past its arrays on a surface with a hole (measured: a heap corruption): every
   // edge must bound exactly two triangles.
   TriMesh closed;
-  closed.points = out.points;
+  for (int i : ours) closed.points.push_back(points[i]);
   for (const Triangle& f : boundary) closed.triangles.push_back({index_of[f[0]], index_of[f[1]], index_of[f[2]]});
   const mesh::EdgeMap edges = mesh::build_edge_map(closed);
   for (size_t t = 0; t < closed.triangles.size(); ++t)
@@ -87,7 +87,7 @@ TetgenFill tetgen_fill(const std::vector<Vec3>& points, const std::vector<Triang
   for (const Triangle& f : boundary)
     for (int k = 0; k < 3; ++k) {
       const int a = index_of[f[k]], b = index_of[f[(k + 1) % 3]];
-      const double length = (out.points[a] - out.points[b]).norm();
+      const double length = (closed.points[a] - closed.points[b]).norm();
       edge_sum[a] += length;
       edge_sum[b] += length;
       edge_count[a] += 1;
@@ -101,7 +101,7 @@ TetgenFill tetgen_fill(const std::vector<Vec3>& points, const std::vector<Triang
   in.numberofpointmtrs = 1;
   in.pointmtrlist = new REAL[n];
   for (int i = 0; i < n; ++i) {
-    for (int c = 0; c < 3; ++c) in.pointlist[3 * i + c] = out.points[i][c];
+    for (int c = 0; c < 3; ++c) in.pointlist[3 * i + c] = closed.points[i][c];
     in.pointmtrlist[i] = quality.size_factor * edge_sum[i] / edge_count[i];
   }
   in.numberoffacets = static_cast<int>(boundary.size());
@@ -134,14 +134,18 @@ TetgenFill tetgen_fill(const std::vector<Vec3>& points, const std::vector<Triang
   if (result.numberofpoints < n)
     throw InternalError(fmt::format("TetGen returned {} points for {} boundary points", result.numberofpoints, n));
   for (int i = 0; i < n; ++i)
-    if (Vec3(result.pointlist[3 * i], result.pointlist[3 * i + 1], result.pointlist[3 * i + 2]) != out.points[i])
+    if (Vec3(result.pointlist[3 * i], result.pointlist[3 * i + 1], result.pointlist[3 * i + 2]) != closed.points[i])
       throw InternalError(fmt::format("TetGen moved boundary point {}", i));
-  for (int i = n; i < result.numberofpoints; ++i)
+  FillResult out;
+  out.points = points;
+  for (int i = n; i < result.numberofpoints; ++i) {
+    ours.push_back(static_cast<int>(out.points.size()));
     out.points.emplace_back(result.pointlist[3 * i], result.pointlist[3 * i + 1], result.pointlist[3 * i + 2]);
+  }
   out.tets.reserve(result.numberoftetrahedra);
   for (int t = 0; t < result.numberoftetrahedra; ++t) {
     Tet tet;
-    for (int c = 0; c < 4; ++c) tet[c] = result.tetrahedronlist[result.numberofcorners * t + c];
+    for (int c = 0; c < 4; ++c) tet[c] = ours[result.tetrahedronlist[result.numberofcorners * t + c]];
     const Vec3& a = out.points[tet[0]];
     if ((out.points[tet[1]] - a).cross(out.points[tet[2]] - a).dot(out.points[tet[3]] - a) < 0.0)
       std::swap(tet[2], tet[3]);

@@ -9,6 +9,7 @@
 
 #include "mesh/reporter.h"
 #include "mesh/tetmesh.h"
+#include "volume/fill.h"
 
 #include <vector>
 
@@ -22,13 +23,10 @@ struct TetgenQuality {
   double size_factor = 1.2;
 };
 
-// The points the boundary uses, then those TetGen added; tetrahedra of positive volume. Throws
-// InputError naming TetGen's reason when it fails (self-intersection, facets too close, ...).
-struct TetgenFill {
-  std::vector<Vec3> points;
-  std::vector<Tet> tets;
-};
-TetgenFill tetgen_fill(const std::vector<Vec3>& points, const std::vector<Triangle>& boundary,
+// As fill_tetrahedra: `points` handed in, then those TetGen added; tetrahedra of positive
+// volume. Throws InputError for a boundary that is not closed, or naming TetGen's reason when it
+// fails (self-intersection, facets too close, ...).
+FillResult tetgen_fill(const std::vector<Vec3>& points, const std::vector<Triangle>& boundary,
                        const TetgenQuality& quality = {}, const Reporter& reporter = silent_reporter());
 
 }  // namespace vesselmesh::volume
