@@ -4,6 +4,7 @@
 #include "io/toml_reader.h"
 #include "io/units.h"
 #include "mesh/error.h"
+#include "post/wss.h"
 
 #include <fmt/format.h>
 
@@ -205,8 +206,11 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
   if (output && !output.is_table()) r.fail("output", "expected a table [output]");
   if (output) r.known_keys(*output.as_table(), "output", {"wss_method"});
   c.wss_method = r.text(output["wss_method"], "output.wss_method", c.wss_method);
-  if (c.wss_method != "quadratic" && c.wss_method != "face")
-    r.fail("output.wss_method", fmt::format("\"{}\": expected quadratic or face", c.wss_method));
+  try {
+    post::parse_wss_method(c.wss_method);
+  } catch (const InputError& e) {
+    r.fail("output.wss_method", e.what());
+  }
   return c;
 }
 
