@@ -36,6 +36,7 @@ Command add_volume_command(CLI::App& parent);
 Command add_quality_command(CLI::App& parent);
 Command add_simulate_command(CLI::App& parent);
 Command add_wss_command(CLI::App& parent);
+Command add_sample_command(CLI::App& parent);
 Command add_study_command(CLI::App& parent);
 Command add_synth_command(CLI::App& parent);
 Command add_demo_command(CLI::App& parent);

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include <iostream>
+#include <map>
 #include <memory>
 
 namespace vesselmesh::cli {
@@ -227,10 +228,34 @@ Command add_synth_command(CLI::App& parent) {
       },
       with_common_options(&synth::bifurcation)));
   shapes.push_back(add_anastomosis(*app));
+  shapes.push_back(shape_command<synth::NozzleOptions>(
+      *app, "nozzle",
+      "The FDA benchmark nozzle (Hariharan et al. 2011) about the z axis, in the coordinates of the FDA's data (the "
+      "step at z = 0, flow along +z): pipe, 20-degree cone, throat, sudden expansion, pipe (or mirrored, "
+      "--orientation conical-diffuser). Open ends: the inlet at the lowest z",
+      synth::NozzleOptions{}.resolution,
+      [](CLI::App& a, synth::NozzleOptions& o) {
+        a.add_option("--radius", o.radius, "Radius of the inlet and outlet pipes (mm)")->capture_default_str();
+        a.add_option("--throat-radius", o.throat_radius, "Radius of the throat (mm)")->capture_default_str();
+        a.add_option("--throat-length", o.throat_length, "Length of the throat (mm)")->capture_default_str();
+        a.add_option("--cone-half-angle", o.cone_half_angle_deg, "Half the cone's opening angle (deg)")
+            ->capture_default_str();
+        a.add_option("--inlet-length", o.inlet_length, "Straight pipe before the nozzle (mm)")->capture_default_str();
+        a.add_option("--outlet-length", o.outlet_length, "Straight pipe after the nozzle (mm)")->capture_default_str();
+        a.add_option("--orientation", o.orientation,
+                     "sudden-expansion (cone, throat, step) or conical-diffuser (step, throat, cone) along the flow")
+            ->transform(CLI::CheckedTransformer(
+                std::map<std::string, synth::NozzleOrientation>{
+                    {"sudden-expansion", synth::NozzleOrientation::sudden_expansion},
+                    {"conical-diffuser", synth::NozzleOrientation::conical_diffuser}},
+                CLI::ignore_case))
+            ->default_str("sudden-expansion");
+      },
+      with_common_options(&synth::nozzle)));
   return {app, [shapes] {
             for (const Command& shape : shapes)
               if (shape.app->parsed()) return shape.action();
-            throw OptionError("name a shape: sphere, cylinder, torus, ellipsoid, bend, bifurcation or anastomosis");
+            throw OptionError("name a shape: sphere, cylinder, torus, ellipsoid, bend, bifurcation, anastomosis or nozzle");
           }};
 }
 

@@ -64,7 +64,8 @@ int process_rank() {
   return rank;
 }
 
-std::string time_step_options() {
+std::string time_step_options(long long unknowns) {
+  if (unknowns >= kTimeStepSplitUnknowns) return saddle_point_options();
   return "-ksp_type gmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 100 -pc_type bjacobi -sub_pc_type ilu";
 }
 

@@ -441,7 +441,7 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
 
 void NavierStokes::Impl::solve_system(StepReport& report, const std::string& where) {
   if (!solver)
-    solver = std::make_unique<LinearSolver>(pattern, kBlock, fc.steady ? saddle_point_options() : time_step_options(),
+    solver = std::make_unique<LinearSolver>(pattern, kBlock, fc.steady ? saddle_point_options() : time_step_options(pattern.total_rows()),
                                             fc.petsc_options);
   x.assign(pattern.total_rows(), 0.0);
   for (int a = 0; a < n(); ++a) {

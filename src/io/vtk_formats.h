@@ -57,7 +57,8 @@ void write_vtu(const std::string& path, const TetMesh& mesh, const std::vector<F
 // A volume mesh written by write_vtu (or any VTU of tetrahedra, wedges and boundary triangles
 // with the integer cell data `tag`): tags named from the field data `tag_names` when present,
 // "tag_<number>" otherwise; `layer` and `column` kept when present. Points are not merged.
-// Checked like the surface readers: a bad file is an InputError naming it.
-TetMesh read_vtu_volume(const std::string& path);
+// Checked like the surface readers: a bad file is an InputError naming it. `point_data`, when
+// given, receives the file's numeric point arrays (e.g. the solver's velocity and pressure).
+TetMesh read_vtu_volume(const std::string& path, std::vector<Field>* point_data = nullptr);
 
 }  // namespace vesselmesh::io

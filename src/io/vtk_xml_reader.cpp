@@ -42,7 +42,7 @@ class XmlSurfaceReader {
   SurfaceData read(const std::string& label_array, bool lines_only);
   // A volume mesh: tetrahedra, wedges and boundary triangles, with cell data `tag` (and
   // `layer`, `column` when present) and field data `tag_names`, as write_vtu writes them.
-  TetMesh read_volume();
+  TetMesh read_volume(std::vector<Field>* point_data);
 
  private:
   [[noreturn]] void fail(const std::string& what) const { throw InputError(fmt::format("{}: {}", name_, what)); }
@@ -485,7 +485,7 @@ std::vector<std::string> XmlSurfaceReader::read_strings(vtkXMLDataElement* array
   return strings;
 }
 
-TetMesh XmlSurfaceReader::read_volume() {
+TetMesh XmlSurfaceReader::read_volume(std::vector<Field>* point_data) {
   parse_root();
   TetMesh mesh;
   volume_ = &mesh;
@@ -501,6 +501,7 @@ TetMesh XmlSurfaceReader::read_volume() {
   if (points > std::numeric_limits<int>::max() / 2) fail(fmt::format("{} points is more than vesselmesh handles", points));
   const long long cells = count_attribute(piece, "NumberOfCells", true);
   read_points(piece, points, mesh.points);
+  if (point_data) *point_data = read_fields(piece->FindNestedElementWithName("PointData"), points, "point data");
   TriMesh triangles;
   std::vector<long long> cell_of_triangle;
   read_grid_cells(piece, cells, 0, 0, triangles, cell_of_triangle);
@@ -620,14 +621,14 @@ SurfaceData parse_vtk_xml_surface(std::string_view bytes, VtkFormat format, cons
   }
 }
 
-TetMesh read_vtu_volume(const std::string& path) {
+TetMesh read_vtu_volume(const std::string& path, std::vector<Field>* point_data) {
   keep_vtk_errors();
   const std::string bytes = read_file(path);
   if (bytes.empty()) throw InputError(fmt::format("{}: the file is empty", path));
   if (bytes.find("<VTKFile") == std::string::npos)
     throw InputError(fmt::format("{}: not a VTK XML file (no <VTKFile> element)", path));
   try {
-    return XmlSurfaceReader(bytes, VtkFormat::vtu, path).read_volume();
+    return XmlSurfaceReader(bytes, VtkFormat::vtu, path).read_volume(point_data);
   } catch (const std::bad_alloc&) {
     throw InputError(fmt::format("{}: the file declares more data than fits in memory (a damaged file?)", path));
   }

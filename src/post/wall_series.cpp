@@ -12,10 +12,10 @@
 
 namespace vesselmesh::post {
 
-WallSeries read_wall_series(const std::string& directory) {
+WallSeries read_wall_series(const std::string& directory, const std::string& collection) {
   WallSeries series;
   series.directory = directory;
-  const std::string pvd = directory + "/wall.pvd";
+  const std::string pvd = directory + "/" + collection + ".pvd";
   if (!std::filesystem::exists(pvd))
     throw InputError(fmt::format("{}: no such file; give the output folder of 'vesselmesh simulate'", pvd));
   const std::string text = io::read_file(pvd);
@@ -35,7 +35,7 @@ WallSeries read_wall_series(const std::string& directory) {
                                    series.frames.back().time));
     series.frames.push_back(frame);
   }
-  if (series.frames.empty()) throw InputError(fmt::format("{}: lists no wall results", pvd));
+  if (series.frames.empty()) throw InputError(fmt::format("{}: lists no results", pvd));
   const std::string summary = directory + "/summary.json";
   if (std::filesystem::exists(summary)) {
     try {
@@ -68,7 +68,7 @@ WallField read_wall_frame(const WallFrame& frame) {
   return field;
 }
 
-WallField wall_at_time(const WallSeries& series, double time) {
+FramePair frames_around(const WallSeries& series, double time) {
   const std::vector<WallFrame>& frames = series.frames;
   const double tolerance = 1e-9 * std::max(1.0, std::abs(frames.back().time));
   if (time < frames.front().time - tolerance || time > frames.back().time + tolerance)
@@ -76,15 +76,20 @@ WallField wall_at_time(const WallSeries& series, double time) {
                                  frames.front().time, frames.back().time, frames.size(), series.directory));
   size_t k = 0;
   while (k + 1 < frames.size() && frames[k + 1].time < time - tolerance) ++k;
-  if (std::abs(frames[k].time - time) <= tolerance || k + 1 == frames.size()) return read_wall_frame(frames[k]);
-  if (std::abs(frames[k + 1].time - time) <= tolerance) return read_wall_frame(frames[k + 1]);
-  WallField a = read_wall_frame(frames[k]);
-  const WallField b = read_wall_frame(frames[k + 1]);
+  if (std::abs(frames[k].time - time) <= tolerance || k + 1 == frames.size()) return {k, k, 0.0};
+  if (std::abs(frames[k + 1].time - time) <= tolerance) return {k + 1, k + 1, 0.0};
+  return {k, k + 1, (time - frames[k].time) / (frames[k + 1].time - frames[k].time)};
+}
+
+WallField wall_at_time(const WallSeries& series, double time) {
+  const FramePair pair = frames_around(series, time);
+  WallField a = read_wall_frame(series.frames[pair.first]);
+  if (pair.second == pair.first) return a;
+  const WallField b = read_wall_frame(series.frames[pair.second]);
   if (b.wss.size() != a.wss.size())
-    throw InputError(fmt::format("{} and {}: different walls ({} and {} points)", frames[k].file, frames[k + 1].file,
-                                 a.wss.size(), b.wss.size()));
-  const double t = (time - a.time) / (b.time - a.time);
-  for (size_t i = 0; i < a.wss.size(); ++i) a.wss[i] += t * (b.wss[i] - a.wss[i]);
+    throw InputError(fmt::format("{} and {}: different walls ({} and {} points)", series.frames[pair.first].file,
+                                 series.frames[pair.second].file, a.wss.size(), b.wss.size()));
+  for (size_t i = 0; i < a.wss.size(); ++i) a.wss[i] += pair.weight * (b.wss[i] - a.wss[i]);
   a.time = time;
   return a;
 }

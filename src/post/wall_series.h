@@ -23,8 +23,9 @@ struct WallSeries {
   double period = 0.0;         // s, from the summary; 0 when the case gave none
 };
 
-// Throws InputError naming the file when the folder has no readable wall.pvd.
-WallSeries read_wall_series(const std::string& directory);
+// Throws InputError naming the file when the folder has no readable wall.pvd. `collection`
+// "fluid" reads the volume's frames (DIR/fluid.pvd) instead.
+WallSeries read_wall_series(const std::string& directory, const std::string& collection = "wall");
 
 struct WallField {
   TriMesh mesh;            // the wall, in the mesh's length unit
@@ -33,6 +34,14 @@ struct WallField {
 };
 
 WallField read_wall_frame(const WallFrame& frame);
+
+// The saved frames around `time` (indices into series.frames; equal when `time` falls on a
+// frame) and the weight of the second; InputError when `time` lies outside the saved span.
+struct FramePair {
+  size_t first = 0, second = 0;
+  double weight = 0.0;
+};
+FramePair frames_around(const WallSeries& series, double time);
 
 // Linear in time between the two saved frames around `time`; InputError when `time` lies
 // outside the saved span (the message gives it).

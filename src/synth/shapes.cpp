@@ -257,4 +257,112 @@ TriMesh bend(const BendOptions& o) {
   return mesh;
 }
 
+namespace {
+
+// The nozzle's profile in the sudden-expansion orientation, (z, r) from the inlet to the outlet,
+// with `before` and `after` the straight pipes' lengths; zero-length pieces left out.
+std::vector<std::pair<double, double>> sudden_expansion_profile(const NozzleOptions& o, double before, double after) {
+  const double cone = (o.radius - o.throat_radius) / std::tan(o.cone_half_angle_deg * kPi / 180.0);
+  const std::pair<double, double> corners[] = {{-(o.throat_length + cone + before), o.radius},
+                                               {-(o.throat_length + cone), o.radius},
+                                               {-o.throat_length, o.throat_radius},
+                                               {0.0, o.throat_radius},
+                                               {0.0, o.radius},
+                                               {after, o.radius}};
+  std::vector<std::pair<double, double>> profile;
+  for (const auto& corner : corners)
+    if (profile.empty() || corner != profile.back()) profile.push_back(corner);
+  return profile;
+}
+
+// The profile of the nozzle as built, (z, r) in order of the inlet to the outlet.
+std::vector<std::pair<double, double>> nozzle_profile(const NozzleOptions& o) {
+  require_positive(o.radius, "radius");
+  require_positive(o.throat_radius, "throat radius");
+  require_positive(o.throat_length, "throat length");
+  if (!(o.throat_radius < o.radius))
+    throw OptionError(fmt::format("the throat radius ({}) must be smaller than the pipe radius ({})", o.throat_radius,
+                                  o.radius));
+  if (!(o.cone_half_angle_deg > 0.0 && o.cone_half_angle_deg < 90.0))
+    throw OptionError(fmt::format("the cone's half angle must be in (0, 90) degrees, got {}", o.cone_half_angle_deg));
+  if (!(o.inlet_length >= 0.0 && o.outlet_length >= 0.0))
+    throw OptionError("inlet and outlet lengths must not be negative");
+  if (o.orientation == NozzleOrientation::sudden_expansion)
+    return sudden_expansion_profile(o, o.inlet_length, o.outlet_length);
+  // The conical diffuser is the mirror image: its inlet pipe is the sudden expansion's outlet.
+  std::vector<std::pair<double, double>> profile = sudden_expansion_profile(o, o.outlet_length, o.inlet_length);
+  std::reverse(profile.begin(), profile.end());
+  for (auto& [z, r] : profile) z = -z;
+  return profile;
+}
+
+}  // namespace
+
+std::pair<double, double> nozzle_extent(const NozzleOptions& o) {
+  const auto profile = nozzle_profile(o);
+  return {profile.front().first, profile.back().first};
+}
+
+double nozzle_radius(const NozzleOptions& o, double z) {
+  const auto profile = nozzle_profile(o);
+  double radius = 0.0;  // the largest of the pieces that hold z: the step's plane gives the pipe's
+  for (size_t i = 0; i + 1 < profile.size(); ++i) {
+    const auto [z0, r0] = profile[i];
+    const auto [z1, r1] = profile[i + 1];
+    if (z < z0 || z > z1) continue;
+    radius = std::max(radius, z1 > z0 ? r0 + (r1 - r0) * (z - z0) / (z1 - z0) : std::max(r0, r1));
+  }
+  return radius;
+}
+
+TriMesh nozzle(const NozzleOptions& o) {
+  require_positive(o.resolution, "resolution");
+  if (o.jitter != 0.0)
+    throw OptionError("the nozzle takes no jitter: its rings stay on the profile's creases (remesh it instead)");
+  const auto profile = nozzle_profile(o);
+  // Samples along the profile, a ring of points at each: the corners are samples.
+  std::vector<std::pair<double, double>> samples = {profile.front()};
+  double triangles = 0.0;
+  for (size_t i = 0; i + 1 < profile.size(); ++i) {
+    const auto [z0, r0] = profile[i];
+    const auto [z1, r1] = profile[i + 1];
+    const int steps = cells(std::hypot(z1 - z0, r1 - r0), o.resolution * std::sqrt(3.0) / 2.0, 1);
+    for (int k = 1; k <= steps; ++k) {
+      const double t = double(k) / steps;
+      samples.emplace_back(z0 + t * (z1 - z0), r0 + t * (r1 - r0));
+      triangles += 4.0 * kPi * std::max(r0, r1) / o.resolution;
+    }
+  }
+  require_count(triangles);
+  TriMesh mesh;
+  std::vector<int> previous, ring;
+  std::vector<double> previous_angle, angle;
+  for (size_t k = 0; k < samples.size(); ++k) {
+    const auto [z, r] = samples[k];
+    const int n = cells(2 * kPi * r, o.resolution, 8);
+    const double offset = (k % 2) * kPi / n;  // stagger neighbouring rings
+    ring.resize(n);
+    angle.resize(n);
+    for (int i = 0; i < n; ++i) {
+      angle[i] = offset + 2 * kPi * i / n;
+      ring[i] = mesh.num_points();
+      mesh.points.emplace_back(r * std::cos(angle[i]), r * std::sin(angle[i]), z);
+    }
+    if (k > 0) zip_rings(mesh, previous, previous_angle, ring, angle);
+    std::swap(previous, ring);
+    std::swap(previous_angle, angle);
+  }
+  // The zipper's triangles share one orientation: outward if they face away from the axis (the
+  // step's plane, facing along it, has no say).
+  double away = 0.0;
+  for (const Triangle& f : mesh.triangles) {
+    const Vec3 a = mesh.points[f[0]], b = mesh.points[f[1]], c = mesh.points[f[2]];
+    const Vec3 centre = (a + b + c) / 3.0;
+    away += (b - a).cross(c - a).dot(Vec3(centre.x(), centre.y(), 0.0));
+  }
+  if (away < 0.0)
+    for (Triangle& t : mesh.triangles) std::swap(t[1], t[2]);
+  return mesh;
+}
+
 }  // namespace vesselmesh::synth

@@ -9,6 +9,7 @@
 #include "mesh/trimesh.h"
 
 #include <cstdint>
+#include <utility>
 
 namespace vesselmesh::synth {
 
@@ -79,5 +80,34 @@ struct CenterlinePoint {
 };
 CenterlinePoint bend_centerline(const BendOptions& options, double s);
 double bend_length(const BendOptions& options);
+
+// The FDA benchmark nozzle (Hariharan et al. 2011, J Biomech Eng 133:041002), a surface of
+// revolution about the z axis with the data's coordinates: in the sudden-expansion orientation
+// the flow (+z) runs through the inlet pipe, a cone of `cone_half_angle_deg` narrowing from
+// `radius` to `throat_radius`, the throat (z from -throat_length to 0), an abrupt step back to
+// `radius` at z = 0 and the outlet pipe. The conical-diffuser orientation is its mirror image
+// (z -> -z): the step at z = 0 leads into the throat, the cone widens after it. Open ends at
+// the lowest z (the inlet) and the highest; sharp creases at the throat's ends are kept exact
+// (a ring of points on each). Every point lies on the profile, whatever the jitter (none:
+// rings are regular and staggered; jitter is refused).
+enum class NozzleOrientation { sudden_expansion, conical_diffuser };
+struct NozzleOptions {
+  double radius = 6.0;
+  double throat_radius = 2.0;
+  double throat_length = 40.0;
+  double cone_half_angle_deg = 10.0;
+  double inlet_length = 40.0;   // straight pipe before the first change of radius
+  double outlet_length = 120.0;  // straight pipe after the last
+  NozzleOrientation orientation = NozzleOrientation::sudden_expansion;
+  double resolution = 0.5;
+  double jitter = 0.0;
+  uint64_t seed = 1;
+};
+TriMesh nozzle(const NozzleOptions& options);
+
+// The nozzle's wall radius at axial position z (where the step is, z = 0, the larger one), and
+// the axial extent [z_inlet, z_outlet] of the surface.
+double nozzle_radius(const NozzleOptions& options, double z);
+std::pair<double, double> nozzle_extent(const NozzleOptions& options);
 
 }  // namespace vesselmesh::synth

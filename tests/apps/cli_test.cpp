@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 
 #include <sys/wait.h>
@@ -70,7 +71,7 @@ std::string last_line(const std::string& text) {
 TEST(Cli, HelpListsTheCommands) {
   const RunResult r = run({"--help"});
   EXPECT_EQ(r.code, 0);
-  for (const char* command : {"info", "synth", "demo", "volume", "quality", "simulate"}) EXPECT_NE(r.out.find(command), std::string::npos) << command;
+  for (const char* command : {"info", "synth", "demo", "volume", "quality", "simulate", "sample"}) EXPECT_NE(r.out.find(command), std::string::npos) << command;
   const RunResult info = run({"info", "--help"});
   EXPECT_EQ(info.code, 0);
   EXPECT_NE(info.out.find("--units"), std::string::npos);
@@ -546,6 +547,58 @@ TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
     difference = std::max(difference, std::abs(a[i] - b[i]));
   }
   EXPECT_LT(difference, 1e-6 * largest) << "largest wss " << largest << " Pa";
+}
+
+// The flow inside the volume read back: steady Poiseuille's centerline velocity along a line that
+// starts and ends outside the pipe, a named point, and a time outside the saved span refused.
+TEST(Cli, SampleReadsTheFlowAlongALineAndAtPoints) {
+  test::TemporaryFolder tmp;
+  ASSERT_EQ(run({"synth", "cylinder", "--radius", "2", "--length", "8", "--resolution", "0.4", "-o", tmp.path("p.stl"),
+                 "-q"}).code, 0);
+  ASSERT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("pipe.msh"), "-q"}).code, 0);
+  // examples/pipe_steady.toml: 1 mL/s of Poiseuille flow.
+  std::string text = read_text(std::string(VESSELMESH_EXAMPLES_DIR) + "/pipe_steady.toml");
+  const std::string mesh_path = "../build/pipe.msh";
+  ASSERT_NE(text.find(mesh_path), std::string::npos);
+  text.replace(text.find(mesh_path), mesh_path.size(), "pipe.msh");
+  test::write_bytes(tmp.path("case.toml"), text);
+  ASSERT_EQ(run({"simulate", tmp.path("case.toml"), "-o", tmp.path("out"), "-q"}).code, 0);
+  const RunResult r = run({"sample", tmp.path("out"), "--line", "0,0,-1:0,0,9", "--samples", "11", "--point",
+                           "middle:0,0,4", "-o", tmp.path("axis.csv"), "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.json()["outside"].get<int>(), 2);  // z = -1 and z = 9
+  EXPECT_NE(r.err.find("2 of 12 sample(s) lie outside the mesh"), std::string::npos) << r.err;
+  const double centre = 2.0 * 1e-6 / (std::numbers::pi * 4e-6);  // m/s: twice the mean, Q / (pi R^2)
+  EXPECT_NEAR(r.json()["points"][0]["velocity"][2].get<double>(), centre, 0.03 * centre);
+  std::istringstream csv(read_text(tmp.path("axis.csv")));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_NE(line.find("lengths in mm, velocity in m/s, pressure in Pa"), std::string::npos) << line;
+  std::getline(csv, line);
+  EXPECT_EQ(line.rfind("name,distance_mm,x_mm,y_mm,z_mm,inside,velocity_x_m_s", 0), 0u) << line;
+  std::vector<double> pressure;
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    std::vector<std::string> cells;
+    std::istringstream fields(line);
+    for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+    if (!line.empty() && line.back() == ',') cells.push_back("");
+    ASSERT_EQ(cells.size(), 11u) << line;
+    if (cells[0] != "line" || cells[5] == "0") continue;
+    const double z = std::stod(cells[4]);
+    if (z > 1.0 && z < 7.0) {
+      EXPECT_NEAR(std::stod(cells[8]), centre, 0.03 * centre) << line;
+    }
+    pressure.push_back(std::stod(cells[10]));
+  }
+  EXPECT_EQ(rows, 12);
+  ASSERT_EQ(pressure.size(), 9u);
+  for (size_t i = 1; i < pressure.size(); ++i) EXPECT_LT(pressure[i], pressure[i - 1]);  // falls along the flow
+  const RunResult late = run({"sample", tmp.path("out"), "--point", "a:0,0,4", "--time", "2", "-o", tmp.path("x.csv")});
+  EXPECT_EQ(late.code, 2);
+  EXPECT_NE(last_line(late.err).find("outside the saved results"), std::string::npos) << late.err;
+  EXPECT_EQ(run({"sample", tmp.path("out"), "-o", tmp.path("x.csv")}).code, 2);  // nothing to sample
 }
 
 // Issue 9: rings, points, a time between saved frames and the indices from a simulation's output.

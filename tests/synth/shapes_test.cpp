@@ -135,7 +135,69 @@ TEST(Shapes, BendIsATubeAroundItsCenterline) {
     EXPECT_GT(std::max(e.normal.dot(inlet_normal), e.normal.dot(outlet_normal)), 1.0 - 1e-9);
 }
 
+TEST(Shapes, NozzleLiesOnTheFdaProfileWithItsEndsAndCreases) {
+  const NozzleOptions o;  // the FDA benchmark's sizes, sudden-expansion orientation
+  const TriMesh m = nozzle(o);
+  const double cone = 4.0 / std::tan(10.0 * kPi / 180.0);  // 22.685 mm
+  const auto [z_in, z_out] = nozzle_extent(o);
+  EXPECT_NEAR(z_in, -(40.0 + cone + 40.0), 1e-9);
+  EXPECT_NEAR(z_out, 120.0, 1e-9);
+  EXPECT_DOUBLE_EQ(nozzle_radius(o, -70.0), 6.0);
+  EXPECT_NEAR(nozzle_radius(o, -40.0 - cone / 2), 4.0, 1e-12);
+  EXPECT_DOUBLE_EQ(nozzle_radius(o, -20.0), 2.0);
+  EXPECT_DOUBLE_EQ(nozzle_radius(o, 0.0), 6.0);  // the step's plane: the larger radius
+  int on_step = 0;
+  for (const Vec3& p : m.points) {
+    const double r = std::hypot(p.x(), p.y());
+    if (p.z() == 0.0) {
+      ++on_step;
+      EXPECT_TRUE(r > 2.0 - 1e-9 && r < 6.0 + 1e-9) << r;
+    } else {
+      ASSERT_NEAR(r, nozzle_radius(o, p.z()), 1e-9) << p.transpose();
+    }
+  }
+  EXPECT_GT(on_step, 100);
+  // Outward: away from the axis, and against the flow on the step (the fluid lies downstream).
+  expect_facing_outward(m, [](const Vec3& c) { return c.z() == 0.0 ? Vec3(0, 0, -1) : Vec3(c.x(), c.y(), 0); });
+  const mesh::Statistics st = mesh::statistics(m);
+  EXPECT_EQ(st.boundary_loops, 2);
+  const double volume = kPi * (36.0 * 160.0 + 4.0 * 40.0) + kPi * cone / 3.0 * (36.0 + 12.0 + 4.0);
+  EXPECT_NEAR(st.volume, volume, 0.003 * volume);  // polygons inside the circles
+  EXPECT_GT(st.min_angle.min, 30.0);
+  const std::vector<analysis::OpenEnd> ends = analysis::open_ends(m);
+  ASSERT_EQ(ends.size(), 2u);
+  for (const analysis::OpenEnd& e : ends) {
+    EXPECT_TRUE(std::abs(e.center.z() - z_in) < 1e-9 || std::abs(e.center.z() - z_out) < 1e-9) << e.center.z();
+    EXPECT_NEAR(e.radius, 6.0, 0.02);
+  }
+}
+
+TEST(Shapes, ConicalDiffuserIsTheMirrorImage) {
+  const NozzleOptions se{.inlet_length = 10.0, .outlet_length = 30.0, .resolution = 0.8};
+  NozzleOptions cd = se;
+  cd.orientation = NozzleOrientation::conical_diffuser;
+  // The diffuser's inlet pipe is the expansion's outlet pipe seen from the other side.
+  NozzleOptions mirrored = se;
+  std::swap(mirrored.inlet_length, mirrored.outlet_length);
+  for (double z = -80.0; z <= 80.0; z += 0.37)
+    if (std::abs(z) > 1e-9) {
+      EXPECT_DOUBLE_EQ(nozzle_radius(cd, z), nozzle_radius(mirrored, -z)) << z;
+    }
+  EXPECT_NEAR(nozzle_extent(cd).first, -10.0, 1e-9);
+  const TriMesh m = nozzle(cd);
+  for (const Vec3& p : m.points)
+    if (p.z() != 0.0) {
+      ASSERT_NEAR(std::hypot(p.x(), p.y()), nozzle_radius(cd, p.z()), 1e-9) << p.transpose();
+    }
+  expect_facing_outward(m, [](const Vec3& c) { return c.z() == 0.0 ? Vec3(0, 0, 1) : Vec3(c.x(), c.y(), 0); });
+  EXPECT_GT(mesh::statistics(m).volume, 0.0);
+}
+
 TEST(Shapes, BadOptionsAreOptionErrors) {
+  EXPECT_THROW(nozzle({.throat_radius = 6.5}), OptionError);
+  EXPECT_THROW(nozzle({.cone_half_angle_deg = 90.0}), OptionError);
+  EXPECT_THROW(nozzle({.inlet_length = -1.0}), OptionError);
+  EXPECT_THROW(nozzle({.jitter = 0.1}), OptionError);
   EXPECT_THROW(sphere({.radius = -1.0}), OptionError);
   EXPECT_THROW(sphere({.radius = 1.0, .resolution = 0.0}), OptionError);
   EXPECT_THROW(sphere({.radius = 1.0, .resolution = 1e-5}), OptionError);  // billions of triangles

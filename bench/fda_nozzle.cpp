@@ -1,0 +1,238 @@
+// The FDA nozzle (issue 8's validation): `vesselmesh simulate`'s result on the nozzle of
+// `vesselmesh synth nozzle` against the FDA's measurements (conformance files of the five
+// laboratories, Re_throat = 500): the centerline axial velocity and the wall pressure along z.
+//   bench_fda_nozzle RESULT_DIR EXPERIMENT_DIR OUT_DIR
+// RESULT_DIR: simulate's output folder (the last frame of fluid.pvd is compared; the one before,
+// when there is one, says how steady it was). EXPERIMENT_DIR: the unzipped `experiment/` folder
+// (PIV_*_500_<lab>.txt; z in m, flow along +z). Prints the tables and the summary; writes
+// OUT_DIR/centerline_velocity.csv, wall_pressure.csv and their SVG charts. The mesh is in mm
+// (as synth writes it). Pressures are compared as differences from the most downstream tap every
+// laboratory has (the measurements are gauge pressures with each laboratory's own zero).
+#include "io/atomic_file.h"
+#include "mesh/error.h"
+#include "post/fluid_sample.h"
+#include "study/chart.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+namespace {
+
+using namespace vesselmesh;
+using Curve = std::vector<std::pair<double, double>>;  // (z in mm, value), increasing z
+
+// The rows of section `keyword` of a conformance file (none when the laboratory has none).
+Curve read_section(const std::filesystem::path& file, const std::string& keyword, double z_scale) {
+  std::ifstream in(file);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string first;
+    words >> first;
+    if (first != keyword) continue;
+    int count = 0;
+    if (!std::getline(in, line) || !(std::istringstream(line) >> count) || count < 0)
+      throw InputError(fmt::format("{}: section {} has no row count", file.string(), keyword));
+    Curve curve;
+    for (int i = 0; i < count && std::getline(in, line); ++i) {
+      double z = 0.0, value = 0.0;
+      if (!(std::istringstream(line) >> z >> value))
+        throw InputError(fmt::format("{}: row {} of {} is not two numbers: {}", file.string(), i + 1, keyword, line));
+      curve.emplace_back(z * z_scale, value);
+    }
+    std::sort(curve.begin(), curve.end());
+    return curve;
+  }
+  return {};
+}
+
+struct Lab {
+  std::string code;
+  Curve velocity, pressure;
+};
+
+std::vector<Lab> read_labs(const std::string& folder) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(folder))
+    if (entry.path().extension() == ".txt") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  std::vector<Lab> labs;
+  for (const auto& file : files) {
+    Lab lab;
+    const std::string stem = file.stem().string();
+    lab.code = stem.substr(stem.rfind('_') + 1);
+    lab.velocity = read_section(file, "plot-z-distribution-axial-velocity", 1e3);
+    lab.pressure = read_section(file, "plot-wall-distribution-pressure", 1e3);
+    labs.push_back(lab);
+  }
+  if (labs.empty()) throw InputError(fmt::format("{}: no laboratory files (*.txt)", folder));
+  return labs;
+}
+
+// The wall pressure at z: the mean over the wall's points within `window` mm of z.
+double wall_pressure(const post::FluidField& f, const std::vector<int>& wall_points, double z, double window) {
+  double sum = 0.0;
+  int n = 0;
+  for (int v : wall_points)
+    if (std::abs(f.mesh.points[v].z() - z) <= window) sum += f.pressure[v], ++n;
+  return n ? sum / n : std::nan("");
+}
+
+struct Stats {
+  double mean = 0.0, low = 0.0, high = 0.0;
+  int labs = 0;
+};
+
+// The laboratories' values at z (those that measured there).
+Stats at(const std::vector<Lab>& labs, Curve Lab::*which, double z, const std::map<std::string, double>& offset = {}) {
+  Stats s{0.0, 1e300, -1e300, 0};
+  for (const Lab& lab : labs)
+    for (const auto& [zz, v] : lab.*which)
+      if (std::abs(zz - z) < 1e-6) {
+        const double value = v - (offset.count(lab.code) ? offset.at(lab.code) : 0.0);
+        s.mean += value, s.low = std::min(s.low, value), s.high = std::max(s.high, value), ++s.labs;
+      }
+  if (s.labs) s.mean /= s.labs;
+  return s;
+}
+
+std::vector<double> stations(const std::vector<Lab>& labs, Curve Lab::*which) {
+  std::vector<double> z;
+  for (const Lab& lab : labs)
+    for (const auto& row : lab.*which) z.push_back(row.first);
+  std::sort(z.begin(), z.end());
+  z.erase(std::unique(z.begin(), z.end(), [](double a, double b) { return std::abs(a - b) < 1e-6; }), z.end());
+  return z;
+}
+
+int run(int argc, char** argv) {
+  if (argc != 4) {
+    std::cerr << "usage: bench_fda_nozzle RESULT_DIR EXPERIMENT_DIR OUT_DIR\n";
+    return 2;
+  }
+  const std::string results = argv[1], experiment = argv[2], out = argv[3];
+  std::filesystem::create_directories(out);
+  const std::vector<Lab> labs = read_labs(experiment);
+  const post::WallSeries series = post::read_wall_series(results, "fluid");
+  if (series.length_unit != "mm") throw InputError(fmt::format("{}: the mesh is in {}, not mm", results, series.length_unit));
+  const post::FluidField field = post::read_fluid_frame(series.frames.back());
+  const post::TetLocator locator(field.mesh);
+  std::vector<int> wall_points;
+  {
+    std::vector<char> on_wall(field.mesh.points.size(), 0);
+    for (size_t t = 0; t < field.mesh.boundary.size(); ++t)
+      if (field.mesh.tag_names.at(field.mesh.boundary_tags[t]) == "wall")
+        for (int v : field.mesh.boundary[t]) on_wall[v] = 1;
+    for (size_t v = 0; v < on_wall.size(); ++v)
+      if (on_wall[v]) wall_points.push_back(static_cast<int>(v));
+  }
+  fmt::print("result: {} (t = {:g} s, {} points, {} tetrahedra); {} laboratories\n", results, field.time,
+             field.mesh.points.size(), locator.tets().size(), labs.size());
+
+  // Centerline velocity.
+  const auto axial = [&](const post::FluidField& f, double z) {
+    const post::FluidSample s = post::sample_points(f, locator, {Vec3(0.0, 0.0, z)})[0];
+    return s.inside ? s.velocity.z() : std::nan("");
+  };
+  const double throat_mean = 5.20624e-6 / (M_PI * 4e-6);  // m/s, Q / (pi r_t^2)
+  fmt::print("\ncenterline axial velocity (m/s)\n{:>9} {:>9} {:>17} {:>9} {:>9}\n", "z mm", "labs", "range", "ours",
+             "diff");
+  std::string csv = "z_mm,labs_mean_m_s,labs_min_m_s,labs_max_m_s,labs,ours_m_s\n";
+  double sum2 = 0.0, worst = 0.0;
+  int n = 0;
+  for (double z : stations(labs, &Lab::velocity)) {
+    const Stats s = at(labs, &Lab::velocity, z);
+    const double ours = axial(field, z);
+    fmt::print("{:9.2f} {:9.4f} {:8.4f}..{:<8.4f} {:9.4f} {:+9.4f}\n", z, s.mean, s.low, s.high, ours, ours - s.mean);
+    csv += fmt::format("{},{},{},{},{},{}\n", z, s.mean, s.low, s.high, s.labs, ours);
+    if (std::isfinite(ours)) sum2 += (ours - s.mean) * (ours - s.mean), worst = std::max(worst, std::abs(ours - s.mean)), ++n;
+  }
+  fmt::print("centerline velocity: RMS difference from the labs' mean {:.4f} m/s ({:.1f} % of the throat's mean "
+             "velocity {:.4f} m/s), worst {:.4f} m/s, over {} stations\n",
+             std::sqrt(sum2 / std::max(n, 1)), 100 * std::sqrt(sum2 / std::max(n, 1)) / throat_mean, throat_mean, worst, n);
+  io::write_text(out + "/centerline_velocity.csv", csv);
+
+  // Steadiness: the last frame against the one before.
+  if (series.frames.size() >= 2) {
+    const post::FluidField before = post::read_fluid_frame(series.frames[series.frames.size() - 2]);
+    double change = 0.0;
+    for (double z : stations(labs, &Lab::velocity)) {
+      const double a = axial(field, z), b = axial(before, z);
+      if (std::isfinite(a) && std::isfinite(b)) change = std::max(change, std::abs(a - b));
+    }
+    fmt::print("steadiness: the centerline velocity changed by at most {:.4f} m/s from t = {:g} s to {:g} s\n", change,
+               before.time, field.time);
+  }
+
+  // Wall pressure, as differences from the most downstream tap every laboratory has.
+  double reference = 1e300;
+  for (const Lab& lab : labs)
+    if (!lab.pressure.empty()) reference = std::min(reference, lab.pressure.back().first);
+  std::map<std::string, double> offset;
+  for (const Lab& lab : labs)
+    for (const auto& [z, p] : lab.pressure)
+      if (std::abs(z - reference) < 1e-6) offset[lab.code] = p;
+  const double window = 0.5;  // mm
+  const double ours_reference = wall_pressure(field, wall_points, reference, window);
+  fmt::print("\nwall pressure (Pa), relative to z = {:g} mm\n{:>9} {:>9} {:>17} {:>9} {:>9}\n", reference, "z mm",
+             "labs", "range", "ours", "diff");
+  csv = "z_mm,labs_mean_Pa,labs_min_Pa,labs_max_Pa,labs,ours_Pa\n";
+  double drop_labs = 0.0, drop_ours = 0.0;
+  const std::vector<double> taps = stations(labs, &Lab::pressure);
+  for (double z : taps) {
+    const Stats s = at(labs, &Lab::pressure, z, offset);
+    const double ours = wall_pressure(field, wall_points, z, window) - ours_reference;
+    fmt::print("{:9.2f} {:9.2f} {:8.2f}..{:<8.2f} {:9.2f} {:+9.2f}\n", z, s.mean, s.low, s.high, ours, ours - s.mean);
+    csv += fmt::format("{},{},{},{},{},{}\n", z, s.mean, s.low, s.high, s.labs, ours);
+    if (z == taps.front()) drop_labs = s.mean, drop_ours = ours;
+  }
+  fmt::print("pressure drop from z = {:g} mm to z = {:g} mm: labs' mean {:.1f} Pa, ours {:.1f} Pa ({:+.1f} %)\n",
+             taps.front(), reference, drop_labs, drop_ours, 100 * (drop_ours - drop_labs) / drop_labs);
+  io::write_text(out + "/wall_pressure.csv", csv);
+
+  // Charts: the laboratories as dashed lines, ours sampled finely.
+  for (int which = 0; which < 2; ++which) {
+    study::LineChart chart;
+    chart.x_label = "z (mm), flow along +z";
+    chart.title = which == 0 ? "FDA nozzle, Re_throat = 500: centerline axial velocity"
+                             : fmt::format("FDA nozzle, Re_throat = 500: wall pressure relative to z = {:g} mm", reference);
+    chart.y_label = which == 0 ? "velocity (m/s)" : "pressure (Pa)";
+    for (const Lab& lab : labs) {
+      study::Series s{.name = "lab " + lab.code, .x = {}, .y = {}, .dashed = true};
+      for (const auto& [z, v] : which == 0 ? lab.velocity : lab.pressure) {
+        s.x.push_back(z);
+        s.y.push_back(which == 0 ? v : v - offset[lab.code]);
+      }
+      if (!s.x.empty()) chart.series.push_back(s);
+    }
+    study::Series ours{.name = "vesselmesh", .x = {}, .y = {}, .dashed = false};
+    const double z0 = which == 0 ? -100.0 : taps.front(), z1 = which == 0 ? 100.0 : reference;
+    for (int i = 0; i <= 400; ++i) {
+      const double z = z0 + (z1 - z0) * i / 400.0;
+      ours.x.push_back(z);
+      ours.y.push_back(which == 0 ? axial(field, z) : wall_pressure(field, wall_points, z, window) - ours_reference);
+    }
+    chart.series.push_back(ours);
+    io::write_text(out + (which == 0 ? "/centerline_velocity.svg" : "/wall_pressure.svg"), study::svg(chart));
+  }
+  fmt::print("\nwrote {}/centerline_velocity.csv|svg, wall_pressure.csv|svg\n", out);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "bench_fda_nozzle: " << e.what() << "\n";
+    return 1;
+  }
+}

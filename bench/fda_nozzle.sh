@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# Issue 8's validation on the FDA benchmark nozzle (sudden-expansion orientation, Re_throat = 500):
+# the whole pipeline from `vesselmesh synth nozzle` to the comparison with the FDA's measurements
+# (five laboratories' centerline velocity and wall pressure), figures included.
+#   bench/fda_nozzle.sh [BUILD] [OUT] [POINTS_PER_CIRCLE] [HMAX_MM] [DT_S] [END_S]
+# Defaults: build, BUILD/fda-nozzle, 30 points around the lumen (0.42 mm in the throat), sizes at
+# most 0.7 mm, dt 5 ms to t = 0.5 s from rest (the steady state, reached by time steps: the
+# steady solver's Picard iterations do not converge at Re 500). 4 boundary layers, TetGen inside.
+# The measurements: ../shared/data/reference/fda_nozzle/SE_exp_0500.zip beside the checkout (or
+# $FDA_ZIP); they are read from there, never copied into the project. Set NP=K to run the solver
+# under `mpirun -np K`. About 30 minutes on 2 cores with the defaults (490k unknowns, 16 s a step).
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+build=${1:-build}
+out=${2:-$build/fda-nozzle}
+ppc=${3:-30}
+hmax=${4:-0.7}
+dt=${5:-0.005}
+end=${6:-0.5}
+zip=${FDA_ZIP:-$here/../../shared/data/reference/fda_nozzle/SE_exp_0500.zip}
+if [[ ! -f "$zip" ]]; then
+  echo "fda_nozzle.sh: no measurements at $zip (set FDA_ZIP to SE_exp_0500.zip of the FDA's benchmark data)" >&2
+  exit 2
+fi
+vm="$build/vesselmesh"
+compare="$build/bench/bench_fda_nozzle"
+mkdir -p "$out"
+rm -rf "$out/experiment"
+unzip -q -o "$zip" -d "$out"
+# Inlet pipe 30 mm (the first pressure tap is at z = -90.32 mm, the inlet at -92.685 mm), outlet
+# pipe 100 mm (the last velocity station at +80 mm).
+"$vm" synth nozzle --inlet-length 30 --outlet-length 100 --resolution 0.3 -o "$out/nozzle.vtp" -q
+"$vm" size "$out/nozzle.vtp" -o "$out/size.vtp" --size distance --points-per-circle "$ppc" --hmax "$hmax" -q
+"$vm" remesh "$out/nozzle.vtp" --metric "$out/size.vtp" -o "$out/surface.vtp" -q
+"$vm" volume "$out/surface.vtp" -o "$out/volume.msh" --end inlet:0,0,-92.685 --end outlet:0,0,100 \
+  --algorithm tetgen
+cat > "$out/case.toml" <<TOML
+# FDA nozzle, sudden expansion, Re_throat = 500 (fluid and flow rate of the FDA's data files)
+mesh = "volume.msh"
+length_unit = "mm"
+[fluid]
+density = 1056.0
+viscosity = 0.0035
+[time]
+steady = false
+dt = $dt
+end = $end
+save_every = $(python3 -c "print(max(1, round($end / $dt / 5)))")
+[[boundary]]
+tag = "inlet"
+type = "velocity"
+profile = "parabolic"
+flow = 5.20624               # mL/s
+[[boundary]]
+tag = "outlet"
+type = "traction"
+[[boundary]]
+tag = "wall"
+type = "wall"
+TOML
+run=("$vm" simulate "$out/case.toml" -o "$out/flow")
+if [[ -n "${NP:-}" ]]; then run=(mpirun --allow-run-as-root -np "$NP" "${run[@]}"); fi
+/usr/bin/time -f "simulate: %e s wall, %M KB peak" "${run[@]}"
+python3 - "$out/flow/summary.json" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+print(f"simulate: {s['dofs']} unknowns, {s['steps']} steps, {s['seconds_per_step']:.2f} s a step, "
+      f"{s['seconds_per_step_per_million_dofs']:.2f} s a step per million unknowns, {s['ranks']} rank(s)")
+PY
+"$compare" "$out/flow" "$out/experiment" "$out"
