@@ -4,8 +4,8 @@
 # (five laboratories' centerline velocity and wall pressure), figures included.
 #   bench/fda_nozzle.sh [BUILD] [OUT] [POINTS_PER_CIRCLE] [HMAX_MM] [DT_S] [END_S]
 # Defaults: build, BUILD/fda-nozzle, 30 points around the lumen (0.42 mm in the throat), sizes at
-# most 0.7 mm, dt 5 ms to t = 0.5 s from rest (the steady state, reached by time steps: the
-# steady solver's Picard iterations do not converge at Re 500). 4 boundary layers, TetGen inside.
+# most 0.7 mm, dt 5 ms to t = 0.5 s from the Stokes flow (the steady state, reached by time steps:
+# the steady solver's Picard iterations do not settle at Re 500 in reasonable time). 4 boundary layers, TetGen inside.
 # The measurements: ../shared/data/reference/fda_nozzle/SE_exp_0500.zip beside the checkout (or
 # $FDA_ZIP); they are read from there, never copied into the project. Set NP=K to run the solver
 # under `mpirun -np K`. About 30 minutes on 2 cores with the defaults (490k unknowns, 16 s a step).
@@ -46,6 +46,7 @@ steady = false
 dt = $dt
 end = $end
 save_every = $(python3 -c "print(max(1, round($end / $dt / 5)))")
+initial = "stokes"           # the developed pipe flow from the start; the jet grows in time
 [[boundary]]
 tag = "inlet"
 type = "velocity"

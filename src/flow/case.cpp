@@ -118,11 +118,15 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
   if (time)
     r.known_keys(*time.as_table(), "time",
                  {"steady", "dt", "end", "cycles", "period", "save_every", "picard", "steady_tolerance",
-                  "steady_iterations"});
+                  "steady_iterations", "initial"});
   c.steady = r.flag(time["steady"], "time.steady", false);
   c.steady_tolerance = r.number(time["steady_tolerance"], "time.steady_tolerance", c.steady_tolerance);
   c.steady_iterations = r.integer(time["steady_iterations"], "time.steady_iterations", c.steady_iterations, 1);
   c.picard = r.integer(time["picard"], "time.picard", 0, 0);
+  const std::string initial = r.text(time["initial"], "time.initial", "rest");
+  if (initial != "rest" && initial != "stokes")
+    r.fail("time.initial", fmt::format("\"{}\" is not an initial state: give \"rest\" or \"stokes\"", initial));
+  c.stokes_start = initial == "stokes";
   if (!c.steady) {
     if (!time["dt"]) r.fail("time.dt", "missing: an unsteady case needs the time step in s");
     c.dt = r.number(time["dt"], "time.dt", c.dt);

@@ -14,7 +14,8 @@
 //   [solver]   petsc_options = "..." (PETSc's options, applied after the defaults)
 // Added keys: [boundary] harmonics (womersley: the waveform's Fourier harmonics kept, default
 // 20); [time] picard (extra Oseen iterations per step, default 0), steady_tolerance
-// (1e-6), steady_iterations (50); [boundary] backflow (the traction boundaries' backflow
+// (1e-6), steady_iterations (50), initial = "rest" | "stokes" (an unsteady run starts at rest,
+// or from the Stokes flow of the conditions at t = 0); [boundary] backflow (the traction boundaries' backflow
 // stabilization coefficient, default 1); [output] wss_method = "quadratic" | "face" (how the
 // wall shear stress is taken from the velocity, post/wss.h; default quadratic).
 // A positive flow enters the domain, a negative one leaves it.
@@ -70,6 +71,7 @@ struct FlowCase {
   int picard = 0;
   double steady_tolerance = 1e-6;
   int steady_iterations = 50;
+  bool stokes_start = false;  // [time] initial = "stokes"
   double backflow = 1.0;
   std::vector<BoundaryCondition> boundaries;
   std::string petsc_options;

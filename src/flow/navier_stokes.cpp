@@ -560,6 +560,26 @@ StepReport NavierStokes::solve_steady() {
   return report;
 }
 
+StepReport NavierStokes::start_from_stokes() {
+  Impl& s = *impl_;
+  const auto start = Clock::now();
+  StepReport report;
+  s.update_resistance();
+  s.set_dirichlet(s.t);
+  const std::vector<Vec3> none(s.n(), Vec3::Zero());
+  const auto assembly = Clock::now();
+  s.assemble(none, none, 0.0, 0.0);
+  report.assembly_seconds = seconds_since(assembly);
+  s.solve_system(report, fmt::format("the Stokes start (t = {:.6g} s)", s.t));
+  report.change = s.take_solution(s.u, s.p);
+  s.u_old = s.u;
+  s.step_count = 0;
+  report.time = s.t;
+  report.seconds = seconds_since(start);
+  s.check_finite(report);
+  return report;
+}
+
 void NavierStokes::set_state(const std::vector<Vec3>& velocity, double time) {
   Impl& s = *impl_;
   if (velocity.size() != s.u.size())

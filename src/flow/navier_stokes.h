@@ -60,6 +60,10 @@ class NavierStokes {
   StepReport step();
   // Picard iterations from Stokes until the relative change is below the case's tolerance.
   StepReport solve_steady();
+  // An unsteady run's start from the Stokes flow of the conditions at the current time (one
+  // linear solve, no advection): the developed flow a pipe would take seconds of time steps to
+  // reach. The next step() is the first (BDF1).
+  StepReport start_from_stokes();
 
   // Starts the time stepping from this velocity (m/s per point) at this time (s).
   void set_state(const std::vector<Vec3>& velocity, double time);

@@ -104,6 +104,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     j["ranks"] = ranks;
     j["steady"] = fc.steady;
     j["wss_method"] = fc.wss_method;
+    if (!fc.steady) j["initial"] = fc.stokes_start ? "stokes" : "rest";
     if (fc.period > 0.0) j["period"] = fc.period;
     if (summary.indices_end > summary.indices_start)
       j["indices"] = {{"file", "indices.vtp"}, {"start_s", summary.indices_start}, {"end_s", summary.indices_end},
@@ -178,6 +179,11 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     } else {
       const int steps = static_cast<int>(std::ceil(fc.end / fc.dt - 1e-9));
       reporter.info(fmt::format("{} steps of {:g} s to t = {:g} s, {} dofs", steps, fc.dt, fc.end, ns.dofs()));
+      if (fc.stokes_start) {
+        const StepReport r = ns.start_from_stokes();
+        reporter.info(fmt::format("initial state: the Stokes flow at t = {:g} s ({} linear iterations, {:.3g} s)",
+                                  r.time, r.linear_iterations, r.seconds));
+      }
       for (int k = 0; k < steps; ++k) {
         const StepReport r = ns.step();
         summary.steps = r.step;

@@ -234,9 +234,10 @@ VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::Op
   // Interior.
   std::vector<Triangle> closed = inner;
   for (const auto& cap : caps) closed.insert(closed.end(), cap.begin(), cap.end());
-  reporter.info(fmt::format("interior: {} boundary triangles, {} {}", closed.size(),
-                            options.algorithm == FillAlgorithm::tetgen ? "TetGen" : "Gmsh",
-                            fill_algorithm_name(options.algorithm)));
+  reporter.info(fmt::format("interior: {} boundary triangles, {}", closed.size(),
+                            options.algorithm == FillAlgorithm::tetgen
+                                ? std::string("TetGen")
+                                : fmt::format("Gmsh {}", fill_algorithm_name(options.algorithm))));
   FillResult fill = fill_tetrahedra(points, closed, options.algorithm, options.threads, reporter);
 
   TetMesh& mesh = result.mesh;

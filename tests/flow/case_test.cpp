@@ -98,6 +98,13 @@ TEST(FlowCase, MistakesAreNamed) {
   expect_error(with(kContract, "flow = 5.0", "flow = 5.0\nharmonics = 4"), "only a womersley profile");
   expect_error(kContract + std::string("[output]\nwss_method = \"spr\"\n"), "output.wss_method");
   expect_error(kContract + std::string("[output]\nwss = \"face\"\n"), "output.wss");
+  expect_error(with(kContract, "dt = 1e-3", "dt = 1e-3\ninitial = \"potential\""), "time.initial");
+}
+
+TEST(FlowCase, InitialStateAtRestOrStokes) {
+  EXPECT_FALSE(parse_case(kContract, "case.toml").stokes_start);
+  EXPECT_TRUE(parse_case(with(kContract, "dt = 1e-3", "dt = 1e-3\ninitial = \"stokes\""), "case.toml").stokes_start);
+  EXPECT_FALSE(parse_case(with(kContract, "dt = 1e-3", "dt = 1e-3\ninitial = \"rest\""), "case.toml").stokes_start);
 }
 
 TEST(FlowCase, WallShearMethodByName) {

@@ -168,6 +168,35 @@ TEST(NavierStokes, SteadyPoiseuilleOnPureTetrahedra) {
 
 // A resistance outlet: at convergence its mean pressure is R times its outflow, and the inlet's
 // pressure sits above it by Poiseuille's drop 8 mu L Q / (pi R^4) (within the coarse mesh's error).
+// [time] initial = "stokes": an unsteady run starts from the developed flow (Poiseuille in a
+// pipe, at low Reynolds number the Stokes flow is it), not from rest, and the steps keep it.
+TEST(NavierStokes, StokesStartIsTheDevelopedFlow) {
+  const double R = 2.0, L = 8.0, Q = 0.5;  // mm, mm, mL/s
+  const TetMesh mesh = pipe_volume(R, L, 0.3);
+  FlowCase fc = pipe_case("dt = 0.01\nend = 0.1\ninitial = \"stokes\"", fmt::format("flow = {}", Q), "case.toml");
+  ASSERT_TRUE(fc.stokes_start);
+  NavierStokes ns(mesh, fc);
+  const auto centre_velocity = [&] {  // the axial velocity at the points near the axis, mid-pipe
+    double sum = 0.0;
+    int n = 0;
+    for (int a = 0; a < mesh.num_points(); ++a) {
+      const Vec3& x = mesh.points[a];
+      if (std::hypot(x.x(), x.y()) < 0.25 && std::abs(x.z() - L / 2) < 1.5) sum += ns.velocity()[a].z(), ++n;
+    }
+    EXPECT_GT(n, 0);
+    return sum / std::max(n, 1);
+  };
+  const double peak = 2.0 * Q * 1e-6 / (M_PI * R * R * 1e-6);  // m/s
+  EXPECT_EQ(centre_velocity(), 0.0);  // at rest before
+  const StepReport start = ns.start_from_stokes();
+  EXPECT_GT(start.linear_iterations, 0);
+  EXPECT_NEAR(centre_velocity(), peak, 0.05 * peak);  // near the axis: a little under the peak
+  EXPECT_EQ(ns.steps(), 0);
+  ns.step();
+  EXPECT_NEAR(centre_velocity(), peak, 0.05 * peak);
+  EXPECT_EQ(ns.steps(), 1);
+}
+
 TEST(NavierStokes, ResistanceOutletCarriesRTimesQ) {
   const double R = 2.0, L = 6.0, Q = 0.5, resistance = 2e8;  // mm, mm, mL/s, Pa s/m3
   const TetMesh mesh = pipe_volume(R, L, 0.4);
