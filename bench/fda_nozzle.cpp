@@ -5,13 +5,14 @@
 // RESULT_DIR: simulate's output folder (the last frame of fluid.pvd is compared; the one before,
 // when there is one, says how steady it was). EXPERIMENT_DIR: the unzipped `experiment/` folder
 // (PIV_*_500_<lab>.txt; z in m, flow along +z). Prints the tables and the summary; writes
-// OUT_DIR/centerline_velocity.csv, wall_pressure.csv and their SVG charts. The mesh is in mm
+// OUT_DIR/centerline_velocity.csv, wall_pressure.csv and their charts (SVG and PNG). The mesh is in mm
 // (as synth writes it). Pressures are compared as differences from the most downstream tap every
 // laboratory has (the measurements are gauge pressures with each laboratory's own zero).
 #include "io/atomic_file.h"
 #include "mesh/error.h"
 #include "post/fluid_sample.h"
 #include "study/chart.h"
+#include "study/raster.h"
 
 #include <fmt/format.h>
 
@@ -220,9 +221,9 @@ int run(int argc, char** argv) {
       ours.y.push_back(which == 0 ? axial(field, z) : wall_pressure(field, wall_points, z, window) - ours_reference);
     }
     chart.series.push_back(ours);
-    io::write_text(out + (which == 0 ? "/centerline_velocity.svg" : "/wall_pressure.svg"), study::svg(chart));
+    study::write_svg_and_png(out + (which == 0 ? "/centerline_velocity" : "/wall_pressure"), study::svg(chart));
   }
-  fmt::print("\nwrote {}/centerline_velocity.csv|svg, wall_pressure.csv|svg\n", out);
+  fmt::print("\nwrote {}/centerline_velocity.csv|svg|png, wall_pressure.csv|svg|png\n", out);
   return 0;
 }
 
