@@ -61,7 +61,8 @@ type = "wall"
 TOML
 run=("$vm" simulate "$out/case.toml" -o "$out/flow")
 if [[ -n "${NP:-}" ]]; then run=(mpirun --allow-run-as-root -np "$NP" "${run[@]}"); fi
-/usr/bin/time -f "simulate: %e s wall, %M KB peak" "${run[@]}"
+if [[ -x /usr/bin/time ]]; then run=(/usr/bin/time -f "simulate: %e s wall, %M KB peak" "${run[@]}"); fi
+"${run[@]}"
 python3 - "$out/flow/summary.json" <<'PY'
 import json, sys
 s = json.load(open(sys.argv[1]))

@@ -81,11 +81,13 @@ Command add_sample_command(CLI::App& parent) {
               const double distance = i < on_line ? s.distance : 0.0;
               csv += fmt::format("{},{:.9g},{:.9g},{:.9g},{:.9g},{:d}", name, distance, s.point.x(), s.point.y(),
                                  s.point.z(), s.inside);
-              if (s.inside)
+              if (s.inside) {
                 csv += fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", s.velocity.x(), s.velocity.y(),
                                    s.velocity.z(), s.velocity.norm(), s.pressure);
-              else
-                csv += ",,,,,\n", ++outside;
+              } else {
+                csv += ",,,,,\n";
+                ++outside;
+              }
               if (i >= on_line)
                 json_points.push_back({{"name", name}, {"point", to_json(s.point)}, {"inside", s.inside},
                                        {"velocity", to_json(s.velocity)}, {"pressure", round_to(s.pressure)}});
