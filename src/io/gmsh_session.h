@@ -3,8 +3,14 @@
 // files, errors thrown as exceptions) and clears the model when it ends. One at a time.
 #pragma once
 
+#include "mesh/error.h"
+
+#include <array>
+#include <cstddef>
 #include <mutex>
 #include <string>
+#include <unordered_map>
+#include <vector>
 
 namespace vesselmesh::io {
 
@@ -25,6 +31,23 @@ template <typename F>
 void call_gmsh(const std::string& context, F&& what);
 
 [[noreturn]] void rethrow_gmsh_error(const std::string& context);
+
+// Gmsh's elements of N nodes (`nodes` flat, as getElementsByType gives them) in our numbering
+// through `index_of` (Gmsh's node tag -> our point); InternalError naming `what` on a node the
+// map lacks.
+template <std::size_t N>
+std::vector<std::array<int, N>> in_our_numbering(const std::vector<std::size_t>& nodes,
+                                                 const std::unordered_map<std::size_t, int>& index_of,
+                                                 const std::string& what) {
+  std::vector<std::array<int, N>> elements(nodes.size() / N);
+  for (std::size_t e = 0; e < elements.size(); ++e)
+    for (std::size_t c = 0; c < N; ++c) {
+      const auto it = index_of.find(nodes[N * e + c]);
+      if (it == index_of.end()) throw InternalError("Gmsh returned a " + what + " on an unknown node");
+      elements[e][c] = it->second;
+    }
+  return elements;
+}
 
 template <typename F>
 void call_gmsh(const std::string& context, F&& what) {

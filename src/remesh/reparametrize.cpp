@@ -201,15 +201,8 @@ GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& me
             empty_patches.emplace_back(tag, Vec3(0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.5 * (z0 + z1)));
             continue;
           }
-          for (size_t t = 0; t < triangle_tags.size(); ++t) {
-            Triangle f;
-            for (int c = 0; c < 3; ++c) {
-              const auto it = index_of.find(triangle_nodes[3 * t + c]);
-              if (it == index_of.end()) throw InternalError("Gmsh returned a triangle on an unknown node");
-              f[c] = it->second;
-            }
+          for (const Triangle& f : io::in_our_numbering<3>(triangle_nodes, index_of, "triangle"))
             mesh.triangles.push_back(f);
-          }
         }
       });
     }

@@ -105,16 +105,7 @@ FillResult fill_tetrahedra(const std::vector<Vec3>& points, const std::vector<Tr
     }
     std::vector<std::size_t> tet_tags, tet_nodes;
     gmsh::model::mesh::getElementsByType(kTetrahedron4, tet_tags, tet_nodes, 1);
-    out.tets.reserve(tet_tags.size());
-    for (size_t t = 0; t < tet_tags.size(); ++t) {
-      Tet tet;
-      for (int c = 0; c < 4; ++c) {
-        const auto it = index_of.find(tet_nodes[4 * t + c]);
-        if (it == index_of.end()) throw InternalError("Gmsh returned a tetrahedron on an unknown node");
-        tet[c] = it->second;
-      }
-      out.tets.push_back(tet);
-    }
+    out.tets = io::in_our_numbering<4>(tet_nodes, index_of, "tetrahedron");
   });
   if (out.tets.empty())
     throw InputError("Gmsh made no tetrahedra inside the surface: it is not closed, or it intersects itself");
