@@ -16,7 +16,9 @@
 // 20); [time] picard (extra Oseen iterations per step, default 0), steady_tolerance
 // (1e-6), steady_iterations (50), initial = "rest" | "stokes" (an unsteady run starts at rest,
 // or from the Stokes flow of the conditions at t = 0); [boundary] backflow (the traction boundaries' backflow
-// stabilization coefficient, default 1); [output] wss_method = "quadratic" | "face" (how the
+// stabilization coefficient, default 1); [solver] reuse_preconditioner = true | false (time steps
+// keep the linear solver's preconditioner while it serves, LinearSolver::reuse_preconditioner;
+// default true); [output] wss_method = "quadratic" | "face" (how the
 // wall shear stress is taken from the velocity, post/wss.h; default quadratic).
 // A positive flow enters the domain, a negative one leaves it.
 #pragma once
@@ -75,6 +77,7 @@ struct FlowCase {
   double backflow = 1.0;
   std::vector<BoundaryCondition> boundaries;
   std::string petsc_options;
+  bool reuse_preconditioner = true;  // [solver]: time steps keep the preconditioner while it serves
   std::string wss_method = "quadratic";  // post::parse_wss_method
 };
 

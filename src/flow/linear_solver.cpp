@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <petscksp.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 
@@ -90,6 +91,9 @@ struct LinearSolver::Impl {
   std::vector<PetscInt> starts, columns;  // the MPI matrix's CSR, kept for its updates
   VecScatter gather = nullptr;            // the distributed solution to every process
   Vec whole = nullptr;
+  bool reuse = false;
+  int built_iterations = -1;  // iterations of the last solve that built the preconditioner; -1: build next
+  int last_iterations = 0;
 
   ~Impl() {
     if (gather) VecScatterDestroy(&gather);
@@ -197,7 +201,33 @@ SolveStats LinearSolver::solve(const std::vector<double>& values, const std::vec
   std::memcpy(v, x.data() + first, static_cast<size_t>(n) * sizeof(double));
   check(VecRestoreArray(s.solution, &v), "VecRestoreArray");
 
+  // Reuse the preconditioner while the solve before did not take much more than the one
+  // that built it; cap the reusing solve, and repeat it with a new preconditioner if it fails.
+  const int reuse_limit =
+      static_cast<int>(kReuseGrowth * std::max(s.built_iterations, 0)) + kReuseSlack;
+  const bool reuse = s.reuse && s.built_iterations >= 0 && s.last_iterations <= reuse_limit;
+  PetscReal rtol = 0, abstol = 0, dtol = 0;
+  PetscInt max_it = 0;
+  check(KSPGetTolerances(s.ksp, &rtol, &abstol, &dtol, &max_it), "KSPGetTolerances");
+  check(KSPSetReusePreconditioner(s.ksp, reuse ? PETSC_TRUE : PETSC_FALSE), "KSPSetReusePreconditioner");
+  if (reuse) check(KSPSetTolerances(s.ksp, rtol, abstol, dtol, std::min<PetscInt>(max_it, reuse_limit)), "KSPSetTolerances");
   check(KSPSolve(s.ksp, s.rhs, s.solution), "KSPSolve");
+  KSPConvergedReason reason;
+  check(KSPGetConvergedReason(s.ksp, &reason), "KSPGetConvergedReason");
+  bool built = !reuse;
+  PetscInt failed_iterations = 0;  // of a capped solve that did not converge
+  if (reuse) {
+    check(KSPSetTolerances(s.ksp, rtol, abstol, dtol, max_it), "KSPSetTolerances");
+    if (reason <= 0) {  // the old preconditioner no longer serves: start again with a new one
+      check(KSPGetIterationNumber(s.ksp, &failed_iterations), "KSPGetIterationNumber");
+      check(VecGetArray(s.solution, &v), "VecGetArray");
+      std::memcpy(v, x.data() + first, static_cast<size_t>(n) * sizeof(double));
+      check(VecRestoreArray(s.solution, &v), "VecRestoreArray");
+      check(KSPSetReusePreconditioner(s.ksp, PETSC_FALSE), "KSPSetReusePreconditioner");
+      check(KSPSolve(s.ksp, s.rhs, s.solution), "KSPSolve");
+      built = true;
+    }
+  }
 
   Vec result = s.solution;
   if (s.distributed) {
@@ -213,16 +243,22 @@ SolveStats LinearSolver::solve(const std::vector<double>& values, const std::vec
   SolveStats stats;
   PetscInt iterations = 0;
   PetscReal norm = 0.0;
-  KSPConvergedReason reason;
   check(KSPGetIterationNumber(s.ksp, &iterations), "KSPGetIterationNumber");
   check(KSPGetResidualNorm(s.ksp, &norm), "KSPGetResidualNorm");
   check(KSPGetConvergedReason(s.ksp, &reason), "KSPGetConvergedReason");
-  stats.iterations = static_cast<int>(iterations);
+  stats.iterations = static_cast<int>(iterations + failed_iterations);
   stats.residual_norm = norm;
   stats.converged = reason > 0;
   stats.reason = KSPConvergedReasons[reason];
+  stats.preconditioner_built = built;
+  if (built) s.built_iterations = static_cast<int>(iterations);
+  s.last_iterations = static_cast<int>(iterations);
   return stats;
 }
+
+void LinearSolver::reuse_preconditioner(bool on) { impl_->reuse = on; }
+
+void LinearSolver::rebuild_preconditioner() { impl_->built_iterations = -1; }
 
 std::string LinearSolver::description() const {
   KSPType ksp_type = nullptr;

@@ -33,6 +33,7 @@ struct SolveStats {
   double residual_norm = 0.0;  // the preconditioned residual PETSc's test looks at
   bool converged = false;
   std::string reason;  // PETSc's converged reason, e.g. CONVERGED_RTOL or DIVERGED_ITS
+  bool preconditioner_built = true;  // false: the previous solve's preconditioner served
 };
 
 // Steady solves: FGMRES with a Schur-complement field split, the velocity block by block-Jacobi
@@ -67,6 +68,19 @@ class LinearSolver {
   // and `rhs` (this process's rows); `x` holds the whole initial guess on entry (total_rows) and
   // the whole solution on return, on every process.
   SolveStats solve(const std::vector<double>& values, const std::vector<double>& rhs, std::vector<double>& x);
+
+  // Keep the preconditioner from one solve to the next while it still serves (a time step's
+  // matrix changes little from the step before, and building ILU or AMG costs more than the few
+  // extra iterations): it is built anew when the solve before took more than
+  // kReuseGrowth x the iterations of the last solve that built it (plus kReuseSlack), and a
+  // solve that reuses it is capped at that count, then repeated with a new preconditioner.
+  // The answer meets the same tolerance either way. Off by default.
+  void reuse_preconditioner(bool on);
+  // The next solve builds its preconditioner (the system's kind changed, e.g. after a Stokes
+  // solve).
+  void rebuild_preconditioner();
+  static constexpr double kReuseGrowth = 1.5;
+  static constexpr int kReuseSlack = 5;
 
   // The Krylov method and preconditioner PETSc settled on, e.g. "fgmres + fieldsplit".
   std::string description() const;

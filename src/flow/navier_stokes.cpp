@@ -440,9 +440,11 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
 }
 
 void NavierStokes::Impl::solve_system(StepReport& report, const std::string& where) {
-  if (!solver)
+  if (!solver) {
     solver = std::make_unique<LinearSolver>(pattern, kBlock, fc.steady ? saddle_point_options() : time_step_options(pattern.total_rows()),
                                             fc.petsc_options);
+    solver->reuse_preconditioner(!fc.steady && fc.reuse_preconditioner);
+  }
   x.assign(pattern.total_rows(), 0.0);
   for (int a = 0; a < n(); ++a) {
     for (int i = 0; i < 3; ++i) x[kBlock * a + i] = u[a][i];
@@ -571,6 +573,7 @@ StepReport NavierStokes::start_from_stokes() {
   s.assemble(none, none, 0.0, 0.0);
   report.assembly_seconds = seconds_since(assembly);
   s.solve_system(report, fmt::format("the Stokes start (t = {:.6g} s)", s.t));
+  s.solver->rebuild_preconditioner();  // the time steps' system has a mass term
   report.change = s.take_solution(s.u, s.p);
   s.u_old = s.u;
   s.step_count = 0;

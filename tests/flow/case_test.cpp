@@ -54,7 +54,16 @@ TEST(FlowCase, ReadsTheContractKeys) {
   EXPECT_EQ(c.boundaries[2].type, BoundaryType::wall);
   EXPECT_EQ(c.petsc_options, "-ksp_rtol 1e-8");
   EXPECT_EQ(c.wss_method, "quadratic");
+  EXPECT_TRUE(c.reuse_preconditioner);
   EXPECT_NO_THROW(check_tags(c, {"wall", "inlet", "outlet_1"}));
+}
+
+TEST(FlowCase, PreconditionerReuseCanBeTurnedOff) {
+  std::string text = kContract;
+  text += "reuse_preconditioner = false\n";
+  EXPECT_FALSE(parse_case(text, "case.toml").reuse_preconditioner);
+  text.replace(text.find("false"), 5, "\"no\"");
+  EXPECT_THROW(parse_case(text, "case.toml"), InputError);
 }
 
 TEST(FlowCase, CyclesTimesPeriodAndOtherUnits) {
