@@ -25,8 +25,9 @@
 //   bench_flow_peers svfsi-steps LOG
 //       Seconds per step from svFSIplus's "NS <step>-<iteration> <seconds>" lines (the first step
 //       left out), Newton and linear iterations per step.
-//   bench_flow_peers svfsi-wss RESULT.vtu Z0_M Z1_M
-//       The WSS point array of an svFSIplus result at its wall points with Z0 <= z <= Z1.
+//   bench_flow_peers svfsi-wss RESULT.vtu WALL.vtp Z0_M Z1_M
+//       The WSS point array of an svFSIplus result at the points of its wall face (WALL.vtp, as
+//       svfsi-mesh wrote it) with Z0 <= z <= Z1.
 // Each prints `key value` lines for the script.
 #include "io/vtk_formats.h"
 #include "mesh/tetmesh.h"
@@ -233,7 +234,7 @@ int vesselmesh_wss(const std::string& results, double z0, double z1) {
 
 int svfsi_mesh(const std::string& volume, const std::string& directory, double scale, double radius, double flow);
 int svfsi_steps(const std::string& log);
-int svfsi_wss(const std::string& result, double z0, double z1);
+int svfsi_wss(const std::string& result, const std::string& wall, double z0, double z1);
 
 int main(int argc, char** argv) {
   try {
@@ -246,7 +247,7 @@ int main(int argc, char** argv) {
     if (a.size() == 6 && a[0] == "svfsi-mesh")
       return svfsi_mesh(a[1], a[2], std::stod(a[3]), std::stod(a[4]), std::stod(a[5]));
     if (a.size() == 2 && a[0] == "svfsi-steps") return svfsi_steps(a[1]);
-    if (a.size() == 4 && a[0] == "svfsi-wss") return svfsi_wss(a[1], std::stod(a[2]), std::stod(a[3]));
+    if (a.size() == 5 && a[0] == "svfsi-wss") return svfsi_wss(a[1], a[2], std::stod(a[3]), std::stod(a[4]));
     std::fprintf(stderr, "usage: see the comment at the top of bench/flow_peers.cpp\n");
     return 2;
   } catch (const std::exception& e) {
@@ -395,7 +396,7 @@ int svfsi_steps(const std::string& log) {
   return 0;
 }
 
-int svfsi_wss(const std::string& result, double z0, double z1) {
+int svfsi_wss(const std::string& result, const std::string& wall, double z0, double z1) {
   vtkNew<vtkXMLUnstructuredGridReader> reader;
   reader->SetFileName(result.c_str());
   reader->Update();
@@ -403,17 +404,21 @@ int svfsi_wss(const std::string& result, double z0, double z1) {
   vtkDataArray* wss = grid ? grid->GetPointData()->GetArray("WSS") : nullptr;
   if (wss == nullptr || wss->GetNumberOfComponents() != 3)
     throw std::runtime_error(result + " has no 3-component point array WSS");
-  // Wall points: those where svFSIplus wrote a stress (the other boundaries' and the interior's
-  // entries are zero).
+  // The wall's points: the face file's GlobalNodeID (1-based) into the result, which keeps the
+  // mesh's point order.
+  vtkNew<vtkXMLPolyDataReader> face_reader;
+  face_reader->SetFileName(wall.c_str());
+  face_reader->Update();
+  vtkDataArray* ids = face_reader->GetOutput()->GetPointData()->GetArray("GlobalNodeID");
+  if (ids == nullptr) throw std::runtime_error(wall + " has no point array GlobalNodeID");
   std::vector<double> magnitude, z;
-  for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i) {
-    double t[3];
+  for (vtkIdType k = 0; k < ids->GetNumberOfTuples(); ++k) {
+    const auto i = static_cast<vtkIdType>(ids->GetTuple1(k)) - 1;
+    if (i < 0 || i >= grid->GetNumberOfPoints()) throw std::runtime_error(wall + ": a GlobalNodeID outside the result");
+    double t[3], x[3];
     wss->GetTuple(i, t);
-    const double m = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-    if (m == 0.0) continue;
-    double x[3];
     grid->GetPoint(i, x);
-    magnitude.push_back(m);
+    magnitude.push_back(std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]));
     z.push_back(x[2]);
   }
   print_wss(magnitude, z, z0, z1, "points");

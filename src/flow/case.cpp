@@ -118,11 +118,16 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
   if (time)
     r.known_keys(*time.as_table(), "time",
                  {"steady", "dt", "end", "cycles", "period", "save_every", "picard", "steady_tolerance",
-                  "steady_iterations", "initial"});
+                  "steady_iterations", "steady_method", "initial"});
   c.steady = r.flag(time["steady"], "time.steady", false);
   c.steady_tolerance = r.number(time["steady_tolerance"], "time.steady_tolerance", c.steady_tolerance);
   c.steady_iterations = r.integer(time["steady_iterations"], "time.steady_iterations", c.steady_iterations, 1);
   c.picard = r.integer(time["picard"], "time.picard", 0, 0);
+  const std::string method = r.text(time["steady_method"], "time.steady_method", "picard");
+  if (method != "picard" && method != "pseudo-transient")
+    r.fail("time.steady_method",
+           fmt::format("\"{}\" is not a steady method: give \"picard\" or \"pseudo-transient\"", method));
+  c.pseudo_transient = method == "pseudo-transient";
   const std::string initial = r.text(time["initial"], "time.initial", "rest");
   if (initial != "rest" && initial != "stokes")
     r.fail("time.initial", fmt::format("\"{}\" is not an initial state: give \"rest\" or \"stokes\"", initial));

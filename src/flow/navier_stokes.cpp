@@ -539,25 +539,62 @@ StepReport NavierStokes::solve_steady() {
   StepReport report;
   s.set_dirichlet(0.0);
   std::vector<Vec3> advect(s.n(), Vec3::Zero()), none(s.n(), Vec3::Zero());
+  // Pseudo time steps (pseudo_transient): the step length, 0 for a Picard iteration; the first
+  // iteration is the Stokes solve either way.
+  double pseudo_dt = 0.0, last_change = 0.0, resume_dt = 0.0;
+  bool settled = false;
   for (int iteration = 0; iteration < s.fc.steady_iterations; ++iteration) {
     s.update_resistance();
     const auto assembly = Clock::now();
-    s.assemble(advect, none, 0.0, 0.0);
+    std::vector<Vec3> history = none;
+    if (pseudo_dt > 0.0)
+      for (int a = 0; a < s.n(); ++a) history[a] = s.u[a] / pseudo_dt;
+    s.assemble(advect, history, pseudo_dt > 0.0 ? 1.0 / pseudo_dt : 0.0, pseudo_dt);
     report.assembly_seconds += seconds_since(assembly);
-    s.solve_system(report, fmt::format("steady Picard iteration {}", iteration + 1));
+    const std::string what = pseudo_dt > 0.0 ? "pseudo time step" : "Picard iteration";
+    s.solve_system(report, fmt::format("steady {} {}", what, iteration + 1));
     report.change = s.take_solution(s.u, s.p);
     report.step = iteration + 1;
     s.check_finite(report);
-    s.reporter->info(fmt::format("steady iteration {}: velocity change {:.3e}, {} linear iterations", iteration + 1,
+    s.reporter->info(fmt::format("steady iteration {} ({}{}): velocity change {:.3e}, {} linear iterations",
+                                 iteration + 1, what,
+                                 pseudo_dt > 0.0 ? fmt::format(", CFL {:.3g}", s.cfl(advect, pseudo_dt)) : "",
                                  report.change, report.linear_iterations));
     advect = s.u;
-    if (iteration > 0 && report.change < s.fc.steady_tolerance) break;
+    const bool small = report.change < s.fc.steady_tolerance;
+    if (!s.fc.pseudo_transient) {
+      if (iteration > 0 && small) {
+        settled = true;
+        break;
+      }
+      continue;
+    }
+    if (iteration > 0 && pseudo_dt == 0.0 && small) {  // a Picard iteration confirmed it
+      settled = true;
+      break;
+    }
+    if (iteration > 0 && pseudo_dt > 0.0 && small) {
+      resume_dt = pseudo_dt;  // confirm with a Picard iteration
+      pseudo_dt = 0.0;
+    } else if (iteration == 0 || pseudo_dt == 0.0) {
+      // After Stokes a step at kPseudoCflStart (cfl() is linear in the step); after a Picard
+      // iteration that did not confirm, the step before it.
+      const double cfl_per_second = s.cfl(advect, 1.0);
+      pseudo_dt = resume_dt > 0.0 ? resume_dt : cfl_per_second > 0.0 ? kPseudoCflStart / cfl_per_second : 0.0;
+    } else {
+      pseudo_dt *= std::clamp(last_change / report.change, 0.5, 2.0);
+    }
+    last_change = report.change;
   }
-  if (!(report.change < s.fc.steady_tolerance))
-    throw ComputationError(fmt::format("the steady solve did not settle in {} Picard iterations (last relative "
-                                       "change {:.3g} > {:.3g}): the flow may be unsteady at this Reynolds number; "
-                                       "run it in time, or raise time.steady_iterations",
-                                       s.fc.steady_iterations, report.change, s.fc.steady_tolerance));
+  if (!settled) {
+    const std::string advice = s.fc.pseudo_transient
+                                   ? "run it in time, or raise time.steady_iterations"
+                                   : "try time.steady_method = \"pseudo-transient\", run it in time, or raise "
+                                     "time.steady_iterations";
+    throw ComputationError(fmt::format("the steady solve did not settle in {} iterations (last relative change "
+                                       "{:.3g} > {:.3g}): the flow may be unsteady at this Reynolds number; {}",
+                                       s.fc.steady_iterations, report.change, s.fc.steady_tolerance, advice));
+  }
   report.seconds = seconds_since(start);
   return report;
 }

@@ -59,7 +59,13 @@ class NavierStokes {
   // the step and the likely cause (CFL, backflow).
   StepReport step();
   // Picard iterations from Stokes until the relative change is below the case's tolerance.
+  // With the case's pseudo_transient: from Stokes, backward-Euler pseudo time steps, the first
+  // at a CFL number of kPseudoCflStart, each next one longer by the ratio of the last two
+  // changes (switched evolution relaxation, within [1/2, 2] a step); once a step changes the
+  // flow by less than the tolerance, a Picard iteration (no time term) confirms it. The steady
+  // answer is the same; the pseudo steps damp what makes Picard stall at high Reynolds numbers.
   StepReport solve_steady();
+  static constexpr double kPseudoCflStart = 5.0;
   // An unsteady run's start from the Stokes flow of the conditions at the current time (one
   // linear solve, no advection): the developed flow a pipe would take seconds of time steps to
   // reach. The next step() is the first (BDF1).

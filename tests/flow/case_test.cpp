@@ -86,6 +86,15 @@ void expect_error(const std::string& text, const std::string& part) {
   }
 }
 
+TEST(FlowCase, SteadyMethodByName) {
+  std::string text = kContract;
+  EXPECT_FALSE(parse_case(text, "case.toml").pseudo_transient);
+  text.replace(text.find("steady = false"), 14, "steady = true\nsteady_method = \"pseudo-transient\"");
+  EXPECT_TRUE(parse_case(text, "case.toml").pseudo_transient);
+  text.replace(text.find("pseudo-transient"), 16, "newton");
+  expect_error(text, "time.steady_method");
+}
+
 std::string with(std::string text, const std::string& from, const std::string& to) {
   text.replace(text.find(from), from.size(), to);
   return text;

@@ -166,6 +166,29 @@ TEST(NavierStokes, SteadyPoiseuilleOnPureTetrahedra) {
   EXPECT_LT(quadratic.worst, face.worst);
 }
 
+// steady_method = "pseudo-transient": pseudo time steps from Stokes, then a confirming Picard
+// iteration, reach the flow Picard reaches (Re ~ 480 here: 5 mL/s in a 4 mm pipe).
+TEST(NavierStokes, PseudoTransientSteadyReachesPicardsFlow) {
+  const double R = 2.0, L = 8.0, Q = 5.0;
+  const TetMesh mesh = pipe_volume(R, L, 0.5, false);
+  const std::string inflow = fmt::format("profile = \"parabolic\"\nflow = {}", Q);
+  NavierStokes picard(mesh, pipe_case("steady = true", inflow, "picard.toml"));
+  const StepReport by_picard = picard.solve_steady();
+  const FlowCase fc = pipe_case("steady = true\nsteady_method = \"pseudo-transient\"", inflow, "pseudo.toml");
+  ASSERT_TRUE(fc.pseudo_transient);
+  NavierStokes pseudo(mesh, fc);
+  const StepReport by_pseudo = pseudo.solve_steady();
+  EXPECT_LT(by_pseudo.change, fc.steady_tolerance);
+  EXPECT_GT(by_pseudo.step, by_picard.step);  // Stokes, the pseudo steps, the confirmation
+  const double peak = 2.0 * Q * 1e-6 / (M_PI * R * R * 1e-6);
+  double worst = 0.0;
+  for (int a = 0; a < mesh.num_points(); ++a)
+    worst = std::max(worst, (pseudo.velocity()[a] - picard.velocity()[a]).norm());
+  std::printf("pseudo-transient: %d iterations (Picard %d), largest velocity difference %.2e of the peak\n",
+              by_pseudo.step, by_picard.step, worst / peak);
+  EXPECT_LT(worst, 1e-4 * peak);
+}
+
 // A resistance outlet: at convergence its mean pressure is R times its outflow, and the inlet's
 // pressure sits above it by Poiseuille's drop 8 mu L Q / (pi R^4) (within the coarse mesh's error).
 // [time] initial = "stokes": an unsteady run starts from the developed flow (Poiseuille in a
