@@ -541,10 +541,11 @@ StepReport NavierStokes::solve_steady() {
   std::vector<Vec3> advect(s.n(), Vec3::Zero()), none(s.n(), Vec3::Zero());
   // Pseudo time steps (pseudo_transient): the step length, 0 for a Picard iteration; the first
   // iteration is the Stokes solve either way.
-  double pseudo_dt = 0.0, last_change = 0.0, resume_dt = 0.0;
+  double pseudo_dt = 0.0, last_rate = 0.0, resume_dt = 0.0;
   bool settled = false;
   for (int iteration = 0; iteration < s.fc.steady_iterations; ++iteration) {
     s.update_resistance();
+    const double used_dt = pseudo_dt;
     const auto assembly = Clock::now();
     std::vector<Vec3> history = none;
     if (pseudo_dt > 0.0)
@@ -582,9 +583,14 @@ StepReport NavierStokes::solve_steady() {
       const double cfl_per_second = s.cfl(advect, 1.0);
       pseudo_dt = resume_dt > 0.0 ? resume_dt : cfl_per_second > 0.0 ? kPseudoCflStart / cfl_per_second : 0.0;
     } else {
-      pseudo_dt *= std::clamp(last_change / report.change, 0.5, 2.0);
+      // The change per unit pseudo time measures the steady residual: lengthen the step by the
+      // rate's fall (at least 1.2x while it falls, at most 2x), shorten it (at most 2x) when it
+      // rises.
+      const double rate = report.change / used_dt;
+      if (last_rate > 0.0)
+        pseudo_dt *= rate <= last_rate ? std::clamp(last_rate / rate, 1.2, 2.0) : std::max(0.5, last_rate / rate);
     }
-    last_change = report.change;
+    last_rate = used_dt > 0.0 ? report.change / used_dt : 0.0;
   }
   if (!settled) {
     const std::string advice = s.fc.pseudo_transient

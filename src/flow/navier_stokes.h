@@ -60,8 +60,9 @@ class NavierStokes {
   StepReport step();
   // Picard iterations from Stokes until the relative change is below the case's tolerance.
   // With the case's pseudo_transient: from Stokes, backward-Euler pseudo time steps, the first
-  // at a CFL number of kPseudoCflStart, each next one longer by the ratio of the last two
-  // changes (switched evolution relaxation, within [1/2, 2] a step); once a step changes the
+  // at a CFL number of kPseudoCflStart, the next ones longer while the change per unit pseudo
+  // time falls (by its fall, within [1.2, 2] a step), shorter (at most 2x) when it rises
+  // (switched evolution relaxation); once a step changes the
   // flow by less than the tolerance, a Picard iteration (no time term) confirms it. The steady
   // answer is the same; the pseudo steps damp what makes Picard stall at high Reynolds numbers.
   StepReport solve_steady();
