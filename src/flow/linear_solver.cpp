@@ -202,7 +202,8 @@ SolveStats LinearSolver::solve(const std::vector<double>& values, const std::vec
   check(VecRestoreArray(s.solution, &v), "VecRestoreArray");
 
   // Reuse the preconditioner while the solve before did not take much more than the one
-  // that built it; cap the reusing solve, and repeat it with a new preconditioner if it fails.
+  // that built it; cap the reusing solve at twice that, and repeat it with a new preconditioner
+  // if it fails.
   const int reuse_limit =
       static_cast<int>(kReuseGrowth * std::max(s.built_iterations, 0)) + kReuseSlack;
   const bool reuse = s.reuse && s.built_iterations >= 0 && s.last_iterations <= reuse_limit;
@@ -210,7 +211,8 @@ SolveStats LinearSolver::solve(const std::vector<double>& values, const std::vec
   PetscInt max_it = 0;
   check(KSPGetTolerances(s.ksp, &rtol, &abstol, &dtol, &max_it), "KSPGetTolerances");
   check(KSPSetReusePreconditioner(s.ksp, reuse ? PETSC_TRUE : PETSC_FALSE), "KSPSetReusePreconditioner");
-  if (reuse) check(KSPSetTolerances(s.ksp, rtol, abstol, dtol, std::min<PetscInt>(max_it, reuse_limit)), "KSPSetTolerances");
+  if (reuse)
+    check(KSPSetTolerances(s.ksp, rtol, abstol, dtol, std::min<PetscInt>(max_it, 2 * reuse_limit)), "KSPSetTolerances");
   check(KSPSolve(s.ksp, s.rhs, s.solution), "KSPSolve");
   KSPConvergedReason reason;
   check(KSPGetConvergedReason(s.ksp, &reason), "KSPGetConvergedReason");

@@ -73,7 +73,7 @@ class LinearSolver {
   // matrix changes little from the step before, and building ILU or AMG costs more than the few
   // extra iterations): it is built anew when the solve before took more than
   // kReuseGrowth x the iterations of the last solve that built it (plus kReuseSlack), and a
-  // solve that reuses it is capped at that count, then repeated with a new preconditioner.
+  // solve that reuses it is capped at twice that count, then repeated with a new one.
   // The answer meets the same tolerance either way. Off by default.
   void reuse_preconditioner(bool on);
   // The next solve builds its preconditioner (the system's kind changed, e.g. after a Stokes

@@ -98,11 +98,20 @@ TEST(LinearSolver, ReusesThePreconditionerWhileItServes) {
   const SolveStats close = solve_shifted(solver, pattern, values, 1e-7, exact);
   EXPECT_FALSE(close.preconditioner_built);
   EXPECT_LE(close.iterations, 1 * LinearSolver::kReuseGrowth + LinearSolver::kReuseSlack);
-  // Far from it (A's inverse spreads the shift over 0.02 x 4000): the capped solve fails and is
-  // repeated with new factors; the iterations of both are counted.
+  // Far from it (A's inverse spreads the shift over 0.02 x 4000): the capped solve (twice the
+  // reuse limit) fails and is repeated with new factors; the iterations of both are counted.
   const SolveStats far = solve_shifted(solver, pattern, values, 0.02, exact);
   EXPECT_TRUE(far.preconditioner_built);
-  EXPECT_GT(far.iterations, 1 * LinearSolver::kReuseGrowth + LinearSolver::kReuseSlack);
+  const int limit = static_cast<int>(LinearSolver::kReuseGrowth * 1) + LinearSolver::kReuseSlack;
+  EXPECT_EQ(far.iterations, 2 * limit + 1);
+  // Between the limit and the cap (factors of A + 0.02 I for A + 0.025 I: 8 iterations): the
+  // solve converges with the old factors, and the next one builds new ones.
+  solver.rebuild_preconditioner();
+  solve_shifted(solver, pattern, values, 0.02, exact);
+  const SolveStats slow = solve_shifted(solver, pattern, values, 0.025, exact);
+  EXPECT_FALSE(slow.preconditioner_built);
+  EXPECT_GT(slow.iterations, limit);
+  EXPECT_TRUE(solve_shifted(solver, pattern, values, 0.025, exact).preconditioner_built);
   // Asked to: the next solve builds.
   solver.rebuild_preconditioner();
   EXPECT_TRUE(solve_shifted(solver, pattern, values, 0.02, exact).preconditioner_built);
