@@ -15,8 +15,8 @@
 // Added keys: [boundary] harmonics (womersley: the waveform's Fourier harmonics kept, default
 // 20); [time] picard (extra Oseen iterations per step, default 0), steady_tolerance
 // (1e-6), steady_iterations (50), steady_method = "picard" | "pseudo-transient" (Picard
-// iterations from Stokes, or pseudo time steps whose length grows as the flow settles, for
-// Reynolds numbers where Picard stalls; NavierStokes::solve_steady), initial = "rest" | "stokes" (an unsteady run starts at rest,
+// iterations from Stokes, or pseudo time steps whose length grows as the flow settles;
+// NavierStokes::solve_steady), initial = "rest" | "stokes" (an unsteady run starts at rest,
 // or from the Stokes flow of the conditions at t = 0); [boundary] backflow (the traction boundaries' backflow
 // stabilization coefficient, default 1); [solver] reuse_preconditioner = true | false (time steps
 // keep the linear solver's preconditioner while it serves, LinearSolver::reuse_preconditioner;

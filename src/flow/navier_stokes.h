@@ -62,9 +62,9 @@ class NavierStokes {
   // With the case's pseudo_transient: from Stokes, backward-Euler pseudo time steps, the first
   // at a CFL number of kPseudoCflStart, the next ones longer while the change per unit pseudo
   // time falls (by its fall, within [1.2, 2] a step), shorter (at most 2x) when it rises
-  // (switched evolution relaxation); once a step changes the
-  // flow by less than the tolerance, a Picard iteration (no time term) confirms it. The steady
-  // answer is the same; the pseudo steps damp what makes Picard stall at high Reynolds numbers.
+  // (switched evolution relaxation); once a step changes the flow by less than the tolerance,
+  // a Picard iteration (no time term) confirms it. The steady answer is the same; the pseudo
+  // steps damp the iteration (not a flow that is itself unsteady).
   StepReport solve_steady();
   static constexpr double kPseudoCflStart = 5.0;
   // An unsteady run's start from the Stokes flow of the conditions at the current time (one
