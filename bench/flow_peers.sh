@@ -194,7 +194,12 @@ openfoam_run() {  # openfoam_run DIR NAME NP -> DIR/NAME.txt
     return 1
   fi
 }
-for mesh in prisms tets; do
+openfoam_meshes="prisms tets"
+if ! command -v pimpleFoam >/dev/null || ! command -v gmshToFoam >/dev/null; then
+  echo "pimpleFoam not found (apt-get install openfoam): no OpenFOAM figures" >&2
+  openfoam_meshes=""
+fi
+for mesh in $openfoam_meshes; do
   dir="$out/openfoam_$mesh"
   [[ $mesh == prisms ]] && openfoam_case "$dir" "$out/pipe_prisms.msh" || openfoam_case "$dir" "$out/pipe.msh"
   openfoam_run "$dir" np1 1 || continue
