@@ -28,7 +28,7 @@
 //   bench_flow_peers svfsi-wss RESULT.vtu WALL.vtp Z0_M Z1_M
 //       The WSS point array of an svFSIplus result at the points of its wall face (WALL.vtp, as
 //       svfsi-mesh wrote it) with Z0 <= z <= Z1.
-// Each prints `key value` lines for the script.
+// Each prints `key value` lines for the script; a bad argument or file: a message, exit 2.
 #include "io/vtk_formats.h"
 #include "mesh/tetmesh.h"
 #include "post/wall_series.h"
@@ -80,11 +80,12 @@ std::vector<double> read_list(const std::string& text, std::size_t pos, int comp
                               const std::string& what) {
   const std::size_t open = text.find('(', pos);
   if (open == std::string::npos) throw std::runtime_error(what + ": no list");
-  const int count = std::stoi(text.substr(pos, open - pos).substr(text.substr(pos, open - pos).find_first_of("0123456789")));
+  const long count = std::strtol(text.c_str() + pos, nullptr, 10);  // the count before "("
+  if (count <= 0) throw std::runtime_error(what + ": no list length");
   std::vector<double> values;
   values.reserve(static_cast<std::size_t>(count) * components);
   const char* p = text.c_str() + open + 1;
-  for (int i = 0; i < count * components; ++i) {
+  for (long i = 0; i < count * components; ++i) {
     while (*p == '(' || *p == ')' || std::isspace(static_cast<unsigned char>(*p))) ++p;
     char* end = nullptr;
     values.push_back(std::strtod(p, &end));
@@ -230,34 +231,7 @@ int vesselmesh_wss(const std::string& results, double z0, double z1) {
   return 0;
 }
 
-}  // namespace
-
-int svfsi_mesh(const std::string& volume, const std::string& directory, double scale, double radius, double flow);
-int svfsi_steps(const std::string& log);
-int svfsi_wss(const std::string& result, const std::string& wall, double z0, double z1);
-
-int main(int argc, char** argv) {
-  try {
-    const std::vector<std::string> a(argv + 1, argv + argc);
-    if (a.size() == 4 && a[0] == "openfoam-fields") return openfoam_fields(a[1], std::stod(a[2]), std::stod(a[3]));
-    if (a.size() == 6 && a[0] == "openfoam-wss")
-      return openfoam_wss(a[1], a[2], std::stod(a[3]), std::stod(a[4]), std::stod(a[5]));
-    if (a.size() == 2 && a[0] == "openfoam-steps") return openfoam_steps(a[1]);
-    if (a.size() == 4 && a[0] == "vesselmesh-wss") return vesselmesh_wss(a[1], std::stod(a[2]), std::stod(a[3]));
-    if (a.size() == 6 && a[0] == "svfsi-mesh")
-      return svfsi_mesh(a[1], a[2], std::stod(a[3]), std::stod(a[4]), std::stod(a[5]));
-    if (a.size() == 2 && a[0] == "svfsi-steps") return svfsi_steps(a[1]);
-    if (a.size() == 5 && a[0] == "svfsi-wss") return svfsi_wss(a[1], a[2], std::stod(a[3]), std::stod(a[4]));
-    std::fprintf(stderr, "usage: see the comment at the top of bench/flow_peers.cpp\n");
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "bench_flow_peers: %s\n", e.what());
-    return 1;
-  }
-}
-
 // ---- svFSIplus's mesh-complete format ----
-namespace {
 
 vtkNew<vtkIntArray> int_array(const char* name, const std::vector<int>& values) {
   vtkNew<vtkIntArray> array;
@@ -275,8 +249,6 @@ void write_xml(const std::string& path, Data* data) {
   writer->SetDataModeToBinary();
   if (writer->Write() != 1) throw std::runtime_error("cannot write " + path);
 }
-
-}  // namespace
 
 int svfsi_mesh(const std::string& volume, const std::string& directory, double scale, double radius, double flow) {
   const vesselmesh::TetMesh mesh = vesselmesh::io::read_vtu_volume(volume);
@@ -373,12 +345,12 @@ int svfsi_steps(const std::string& log) {
   for (std::string line; std::getline(in, line);) {
     const std::size_t at = line.find("NS ");
     if (at == std::string::npos) continue;
-    int step = 0, iteration = 0;
-    char tail[8] = {};
+    // Fields: "NS", "<step>-<iteration>" (an "s" after it when the step was saved), seconds.
+    std::istringstream fields(line.substr(at + 3));
+    std::string counter;
     double seconds = 0;
-    if (std::sscanf(line.c_str() + at, "NS %d-%d%7s %lf", &step, &iteration, tail, &seconds) < 4) {
-      if (std::sscanf(line.c_str() + at, "NS %d-%d %lf", &step, &iteration, &seconds) != 3) continue;
-    }
+    int step = 0, iteration = 0;
+    if (!(fields >> counter >> seconds) || std::sscanf(counter.c_str(), "%d-%d", &step, &iteration) != 2) continue;
     end_of_step[step] = seconds;
     newton[step] = std::max(newton[step], iteration);
     const std::size_t first = line.find('[', at);
@@ -423,4 +395,26 @@ int svfsi_wss(const std::string& result, const std::string& wall, double z0, dou
   }
   print_wss(magnitude, z, z0, z1, "points");
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const std::vector<std::string> a(argv + 1, argv + argc);
+    if (a.size() == 4 && a[0] == "openfoam-fields") return openfoam_fields(a[1], std::stod(a[2]), std::stod(a[3]));
+    if (a.size() == 6 && a[0] == "openfoam-wss")
+      return openfoam_wss(a[1], a[2], std::stod(a[3]), std::stod(a[4]), std::stod(a[5]));
+    if (a.size() == 2 && a[0] == "openfoam-steps") return openfoam_steps(a[1]);
+    if (a.size() == 4 && a[0] == "vesselmesh-wss") return vesselmesh_wss(a[1], std::stod(a[2]), std::stod(a[3]));
+    if (a.size() == 6 && a[0] == "svfsi-mesh")
+      return svfsi_mesh(a[1], a[2], std::stod(a[3]), std::stod(a[4]), std::stod(a[5]));
+    if (a.size() == 2 && a[0] == "svfsi-steps") return svfsi_steps(a[1]);
+    if (a.size() == 5 && a[0] == "svfsi-wss") return svfsi_wss(a[1], a[2], std::stod(a[3]), std::stod(a[4]));
+    std::fprintf(stderr, "usage: see the comment at the top of bench/flow_peers.cpp\n");
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_flow_peers: %s\n", e.what());
+    return 2;
+  }
 }
