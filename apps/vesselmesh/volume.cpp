@@ -115,6 +115,11 @@ Command add_volume_command(CLI::App& parent) {
                   "run after run), or frontal (needs a Gmsh built with Netgen)")
       ->check(CLI::IsMember({"delaunay", "frontal", "hxt", "tetgen"}))
       ->capture_default_str();
+  app->add_option("--sliver-angle", o->volume.sliver_angle_deg,
+                  "Interior tetrahedra with a dihedral angle under this (degrees) are improved after the fill by flips, "
+                  "moves of inside points and insertions (the boundary is kept); 0: the fill as it comes")
+      ->check(CLI::Range(0.0, 30.0))
+      ->capture_default_str();
   app->add_flag("--keep-prisms", o->volume.keep_prisms, "Write the layer's prisms instead of cutting them into tetrahedra");
   app->add_option("--inlet", o->volume.inlet, "The end that is the inlet, numbered from 0 as 'vesselmesh info' lists them "
                                               "(default: the largest)");
@@ -175,6 +180,14 @@ Command add_volume_command(CLI::App& parent) {
               json["interior_tetrahedra"] = r.interior_tets;
               json["wall_tag"] = r.wall_tag;
               json["ends"] = ends;
+              json["slivers"] = {{"angle_deg", options.sliver_angle_deg},
+                                 {"below_before", r.slivers.below_before},
+                                 {"below_after", r.slivers.below_after},
+                                 {"least_before_deg", round_to(r.slivers.least_before, 4)},
+                                 {"least_after_deg", round_to(r.slivers.least_after, 4)},
+                                 {"flips", r.slivers.flips},
+                                 {"moves", r.slivers.moves},
+                                 {"insertions", r.slivers.insertions}};
               json["shrink"] = {{"wall_points", r.shrunk_vertices},
                                 {"least_fraction", round_to(r.least_fraction, 4)},
                                 {"least_at", to_json(r.least_at)}};

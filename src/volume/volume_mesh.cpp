@@ -239,6 +239,22 @@ VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::Op
                                 ? std::string("TetGen")
                                 : fmt::format("Gmsh {}", fill_algorithm_name(options.algorithm))));
   FillResult fill = fill_tetrahedra(points, closed, options.algorithm, options.threads, reporter);
+  if (options.sliver_angle_deg > 0.0) {
+    reporter.progress("removing slivers", 0.0);
+    report.slivers = remove_slivers(fill.points, fill.tets, static_cast<int>(points.size()),
+                                    {.min_dihedral_deg = options.sliver_angle_deg});
+    reporter.progress("removing slivers", 1.0);
+    const SliverReport& s = report.slivers;
+    reporter.info(fmt::format("interior: {} tetrahedra under {:g} degrees before the clean-up, {} after ({} flips, {} "
+                              "moves, {} insertions); least dihedral angle {:.2f} -> {:.2f} degrees",
+                              s.below_before, options.sliver_angle_deg, s.below_after, s.flips, s.moves, s.insertions,
+                              s.least_before, s.least_after));
+    if (s.below_after > 0)
+      reporter.warning(fmt::format("{} interior tetrahedra keep a dihedral angle under {:g} degrees (the least, {:.2f}, "
+                                   "near {})",
+                                   s.below_after, options.sliver_angle_deg, s.least_after,
+                                   mesh::format_point(s.worst_at)));
+  }
 
   TetMesh& mesh = result.mesh;
   mesh.points = std::move(fill.points);

@@ -19,6 +19,7 @@
 #include "mesh/reporter.h"
 #include "mesh/tetmesh.h"
 #include "volume/boundary_layer.h"
+#include "volume/sliver.h"
 #include "volume/fill.h"
 
 #include <string>
@@ -41,6 +42,9 @@ struct VolumeOptions {
   std::vector<std::string> end_names;  // in the ends' order; empty: inlet, outlet_1, ...
   std::vector<EndAt> end_at;           // or: every end named by the point nearest its centre
   int threads = 0;
+  // Interior tetrahedra with a dihedral angle under this (degrees) are improved after the fill
+  // (volume/sliver.h); 0: the fill is kept as it comes.
+  double sliver_angle_deg = 10.0;
 };
 
 // The ends' names in their order from one point per end: each end takes the name of the point
@@ -62,6 +66,7 @@ struct VolumeReport {
   int layers = 0;
   int layer_tets = 0, layer_prisms = 0, interior_tets = 0;
   int shrunk_vertices = 0;     // wall points whose layer is thinner than asked
+  SliverReport slivers;        // the interior's clean-up
   double least_fraction = 1.0;  // of the thickness asked for, and where
   Vec3 least_at = Vec3::Zero();
   double min_thickness_ratio = 0.0, max_thickness_ratio = 0.0;  // layer thickness / local radius

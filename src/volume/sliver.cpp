@@ -1,0 +1,433 @@
+#include "volume/sliver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <utility>
+
+namespace vesselmesh::volume {
+namespace {
+
+constexpr double kFlat = -1.0;  // the quality of a flat or inverted tetrahedron
+
+// What an operation must raise: the least dihedral angle (degrees), capped by 60 x the
+// volume-length measure 6 sqrt(2) V / l_rms^3 (1 for the regular tetrahedron, 0 for a flat
+// one), so that a sliver is never traded for a needle or a cap: those keep fair dihedral angles
+// but not their volume.
+double work_quality(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const double angle = least_dihedral_deg(a, b, c, d);
+  if (angle <= 0.0) return angle;
+  const double squares = ((b - a).squaredNorm() + (c - a).squaredNorm() + (d - a).squaredNorm() +
+                          (c - b).squaredNorm() + (d - b).squaredNorm() + (d - c).squaredNorm()) / 6.0;
+  const double shape = std::sqrt(2.0) * mesh::tet_volume6(a, b, c, d) / (squares * std::sqrt(squares));
+  return std::min(angle, 60.0 * shape);
+}
+
+// The tetrahedra, the tetrahedra around each point, and which are still in the mesh.
+class Mesh {
+ public:
+  Mesh(std::vector<Vec3>& points, std::vector<Tet>& tets) : points_(points), tets_(tets), ball_(points.size()) {
+    alive_.assign(tets.size(), 1);
+    for (int t = 0; t < static_cast<int>(tets.size()); ++t)
+      for (int v : tets[t]) ball_[v].push_back(t);
+  }
+
+  const Vec3& point(int v) const { return points_[v]; }
+  const Tet& tet(int t) const { return tets_[t]; }
+  bool alive(int t) const { return alive_[t] != 0; }
+  int num_tets() const { return static_cast<int>(tets_.size()); }
+  const std::vector<int>& ball(int v) const { return ball_[v]; }
+
+  double quality(const Tet& t) const {
+    return work_quality(points_[t[0]], points_[t[1]], points_[t[2]], points_[t[3]]);
+  }
+  double quality(int t) const { return quality(tets_[t]); }
+  double dihedral(int t) const {
+    const Tet& c = tets_[t];
+    return least_dihedral_deg(points_[c[0]], points_[c[1]], points_[c[2]], points_[c[3]]);
+  }
+
+  // The live tetrahedra holding all of `corners` (2 or 3 points).
+  std::vector<int> holding(std::initializer_list<int> corners) const {
+    const int first = *corners.begin();
+    std::vector<int> out;
+    for (int t : ball_[first]) {
+      bool all = true;
+      for (int v : corners) all = all && std::find(tets_[t].begin(), tets_[t].end(), v) != tets_[t].end();
+      if (all) out.push_back(t);
+    }
+    return out;
+  }
+
+  // Replaces tetrahedra `old` by `fresh` (slots of the old ones reused first, in order).
+  void replace(const std::vector<int>& old, const std::vector<Tet>& fresh) {
+    for (int t : old) {
+      for (int v : tets_[t]) std::erase(ball_[v], t);
+      alive_[t] = 0;
+    }
+    for (size_t i = 0; i < fresh.size(); ++i) {
+      int t;
+      if (i < old.size()) {
+        t = old[i];
+        tets_[t] = fresh[i];
+        alive_[t] = 1;
+      } else {
+        t = static_cast<int>(tets_.size());
+        tets_.push_back(fresh[i]);
+        alive_.push_back(1);
+      }
+      for (int v : fresh[i]) ball_[v].push_back(t);
+      touched_.push_back(t);
+    }
+  }
+
+  size_t ball_count() const { return ball_.size(); }
+  int add_point(const Vec3& p) {
+    points_.push_back(p);
+    ball_.emplace_back();
+    return static_cast<int>(points_.size()) - 1;
+  }
+  void remove_last_point() {
+    points_.pop_back();
+    ball_.pop_back();
+  }
+  void move(int v, const Vec3& p) {
+    points_[v] = p;
+    touched_.insert(touched_.end(), ball_[v].begin(), ball_[v].end());
+  }
+  // The tetrahedra made or moved since the last call.
+  std::vector<int> take_touched() { return std::exchange(touched_, {}); }
+
+  // Drops the dead tetrahedra, keeping the order of the others.
+  void compact() {
+    size_t kept = 0;
+    for (size_t t = 0; t < tets_.size(); ++t)
+      if (alive_[t]) tets_[kept++] = tets_[t];
+    tets_.resize(kept);
+    alive_.assign(kept, 1);
+    ball_.clear();  // not kept up to date past this point
+  }
+
+ private:
+  std::vector<Vec3>& points_;
+  std::vector<Tet>& tets_;
+  std::vector<std::vector<int>> ball_;
+  std::vector<char> alive_;
+  std::vector<int> touched_;
+};
+
+double least_of(const Mesh& m, const std::vector<Tet>& tets) {
+  double least = std::numeric_limits<double>::infinity();
+  for (const Tet& t : tets) least = std::min(least, m.quality(t));
+  return least;
+}
+double least_of(const Mesh& m, const std::vector<int>& tets) {
+  double least = std::numeric_limits<double>::infinity();
+  for (int t : tets) least = std::min(least, m.quality(t));
+  return least;
+}
+
+// 2-3 flip of the face of t opposite its corner `c`, if it is shared and the flip raises the
+// least angle.
+bool try_flip23(Mesh& m, int t, int c) {
+  const Tet& tt = m.tet(t);
+  const int d = tt[c];
+  // (a, b, c) with d on its positive side: a positive tetrahedron (a, b, c, d) is tt with d last.
+  int face[3], k = 0;
+  static const int kOrder[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};  // (x, y, z, tt[c]) positive
+  for (int i : kOrder[c]) face[k++] = tt[i];
+  std::vector<int> shared = m.holding({face[0], face[1], face[2]});
+  if (shared.size() != 2) return false;  // a boundary face
+  const int u = shared[0] == t ? shared[1] : shared[0];
+  int e = -1;
+  for (int v : m.tet(u))
+    if (v != face[0] && v != face[1] && v != face[2]) e = v;
+  const std::vector<Tet> fresh = {{face[0], face[1], e, d}, {face[1], face[2], e, d}, {face[2], face[0], e, d}};
+  const std::vector<int> old = {t, u};
+  if (least_of(m, fresh) <= least_of(m, old)) return false;
+  m.replace(old, fresh);
+  return true;
+}
+
+// The corners around edge (c, d) in cyclic order, oriented so that (c, d, x_i, x_i+1) is
+// positive, when the tetrahedra holding the edge close a ring around it (an edge inside the
+// mesh); empty for an edge on the boundary.
+std::vector<int> edge_ring(const Mesh& m, int c, int d, const std::vector<int>& ring) {
+  std::vector<std::pair<int, int>> links;  // (x, y) with (c, d, x, y) positive
+  for (int t : ring) {
+    int xy[2], k = 0;
+    for (int v : m.tet(t))
+      if (v != c && v != d) xy[k++] = v;
+    if (mesh::tet_volume6(m.point(c), m.point(d), m.point(xy[0]), m.point(xy[1])) < 0.0) std::swap(xy[0], xy[1]);
+    links.emplace_back(xy[0], xy[1]);
+  }
+  std::vector<int> order = {links[0].first};
+  for (size_t step = 0; step < links.size(); ++step) {
+    const auto next = std::find_if(links.begin(), links.end(), [&](const auto& l) { return l.first == order.back(); });
+    if (next == links.end()) return {};
+    if (next->second == order.front()) return order.size() == links.size() ? order : std::vector<int>{};
+    order.push_back(next->second);
+  }
+  return {};
+}
+
+// Edge removal (Shewchuk, "Two discrete optimization algorithms for the topological improvement
+// of tetrahedral meshes", 2002): the n tetrahedra around an inside edge (c, d) replaced by the
+// 2 (n - 2) joining c and d to a triangulation of the ring of their other corners, the
+// triangulation that makes the least angle largest (dynamic programming over the ring), if it
+// raises the least angle. n = 3 is the 3-2 flip, n = 4 the 4-4 flip.
+bool try_edge_removal(Mesh& m, int c, int d) {
+  constexpr int kMaxRing = 8;
+  const std::vector<int> ring = m.holding({c, d});
+  if (ring.size() < 3 || ring.size() > kMaxRing) return false;
+  const std::vector<int> x = edge_ring(m, c, d, ring);
+  const int n = static_cast<int>(x.size());
+  if (n < 3) return false;
+  // A triangle (x_i, x_j, x_k), i < j < k, gives (x_i, x_j, x_k, d) and (x_k, x_j, x_i, c).
+  auto pair_quality = [&](int i, int j, int k) {
+    return std::min(m.quality(Tet{x[i], x[j], x[k], d}), m.quality(Tet{x[k], x[j], x[i], c}));
+  };
+  double best[kMaxRing][kMaxRing];
+  int split[kMaxRing][kMaxRing];
+  for (int gap = 2; gap < n; ++gap)
+    for (int i = 0; i + gap < n; ++i) {
+      const int j = i + gap;
+      best[i][j] = -std::numeric_limits<double>::infinity();
+      for (int k = i + 1; k < j; ++k) {
+        double q = pair_quality(i, k, j);
+        if (k - i > 1) q = std::min(q, best[i][k]);
+        if (j - k > 1) q = std::min(q, best[k][j]);
+        if (q > best[i][j]) best[i][j] = q, split[i][j] = k;
+      }
+    }
+  if (best[0][n - 1] <= least_of(m, ring)) return false;
+  std::vector<Tet> fresh;
+  std::vector<std::pair<int, int>> todo = {{0, n - 1}};
+  while (!todo.empty()) {
+    const auto [i, j] = todo.back();
+    todo.pop_back();
+    const int k = split[i][j];
+    fresh.push_back({x[i], x[k], x[j], d});
+    fresh.push_back({x[j], x[k], x[i], c});
+    if (k - i > 1) todo.emplace_back(i, k);
+    if (j - k > 1) todo.emplace_back(k, j);
+  }
+  m.replace(ring, fresh);
+  return true;
+}
+
+// The least angle around v with v at p.
+double ball_quality(const Mesh& m, int v, const Vec3& p) {
+  double least = std::numeric_limits<double>::infinity();
+  for (int t : m.ball(v)) {
+    Vec3 c[4];
+    for (int i = 0; i < 4; ++i) c[i] = m.tet(t)[i] == v ? p : m.point(m.tet(t)[i]);
+    least = std::min(least, work_quality(c[0], c[1], c[2], c[3]));
+  }
+  return least;
+}
+
+// Moves free point v by compass search to raise the least angle around it; true if it moved.
+bool try_smooth(Mesh& m, int v) {
+  const Vec3 start = m.point(v);
+  double step = 0.0;
+  int count = 0;
+  for (int t : m.ball(v))
+    for (int w : m.tet(t))
+      if (w != v) step += (m.point(w) - start).norm(), ++count;
+  if (count == 0) return false;
+  step *= 0.1 / count;
+  const double stop = 1e-3 * step;
+  Vec3 p = start;
+  const double before = ball_quality(m, v, p);
+  double best = before;
+  static const Vec3 kDirections[6] = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(),
+                                      -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()};
+  for (int iteration = 0; iteration < 60 && step > stop; ++iteration) {
+    Vec3 next = p;
+    double next_quality = best;
+    for (const Vec3& direction : kDirections) {
+      const Vec3 q = p + step * direction;
+      const double quality = ball_quality(m, v, q);
+      if (quality > next_quality) next_quality = quality, next = q;
+    }
+    if (next_quality > best) p = next, best = next_quality;
+    else step *= 0.5;
+  }
+  if (!(best > before)) return false;
+  m.move(v, p);
+  return true;
+}
+
+// Replaces the tetrahedra `cavity` by `fresh`, which join its boundary to the last point added,
+// then smooths that point; keeps the result if the least angle rose, else undoes both (the
+// point removed).
+bool try_star(Mesh& m, const std::vector<int>& cavity, const std::vector<Tet>& fresh) {
+  const int p = static_cast<int>(m.ball_count()) - 1;
+  const double before = least_of(m, cavity);
+  if (least_of(m, fresh) <= kFlat + 0.5) {  // the point does not see every face
+    m.remove_last_point();
+    return false;
+  }
+  std::vector<Tet> original;
+  for (int u : cavity) original.push_back(m.tet(u));
+  m.replace(cavity, fresh);
+  try_smooth(m, p);
+  if (ball_quality(m, p, m.point(p)) > before) return true;
+  std::vector<int> made = m.ball(p);  // undo: the cavity back in its slots
+  std::sort(made.begin(), made.end());
+  m.replace(made, original);
+  m.remove_last_point();
+  return false;
+}
+
+// Splits the inside edge (c, d) of a sliver at its midpoint (each tetrahedron around it cut in
+// two), the new point then smoothed: what frees a sliver whose corners are all on the
+// boundary and whose edge removals all fail.
+bool try_edge_split(Mesh& m, int c, int d) {
+  const std::vector<int> ring = m.holding({c, d});
+  if (ring.size() < 3 || edge_ring(m, c, d, ring).empty()) return false;
+  const int p = m.add_point(0.5 * (m.point(c) + m.point(d)));
+  std::vector<Tet> fresh;
+  for (int t : ring)
+    for (int end : {c, d}) {
+      Tet half = m.tet(t);
+      for (int& v : half)
+        if (v == end) v = p;
+      fresh.push_back(half);
+    }
+  return try_star(m, ring, fresh);
+}
+
+// Inserts a point at the centroid of t, joined to the boundary of the cavity made of t and
+// its face neighbours, then smoothed; kept if the least angle rises.
+bool try_insert(Mesh& m, int t) {
+  const Tet tt = m.tet(t);
+  std::vector<int> cavity = {t};
+  static const int kOrder[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
+  for (int c = 0; c < 4; ++c) {
+    const std::vector<int> shared = m.holding({tt[kOrder[c][0]], tt[kOrder[c][1]], tt[kOrder[c][2]]});
+    for (int u : shared)
+      if (u != t) cavity.push_back(u);
+  }
+  // Faces of the cavity used once: each becomes a tetrahedron with the new point in place of
+  // the corner across it.
+  struct Face {
+    std::array<int, 3> sorted;
+    int tet, corner;
+  };
+  std::vector<Face> faces;
+  for (int u : cavity)
+    for (int c = 0; c < 4; ++c) {
+      std::array<int, 3> f{};
+      int k = 0;
+      for (int i = 0; i < 4; ++i)
+        if (i != c) f[k++] = m.tet(u)[i];
+      std::sort(f.begin(), f.end());
+      faces.push_back({f, u, c});
+    }
+  std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.sorted < b.sorted; });
+  Vec3 centroid = Vec3::Zero();
+  for (int v : tt) centroid += 0.25 * m.point(v);
+  const int p = m.add_point(centroid);
+  std::vector<Tet> fresh;
+  for (size_t i = 0; i < faces.size(); ++i) {
+    const bool twice = (i + 1 < faces.size() && faces[i + 1].sorted == faces[i].sorted) ||
+                       (i > 0 && faces[i - 1].sorted == faces[i].sorted);
+    if (twice) continue;
+    Tet n = m.tet(faces[i].tet);
+    n[faces[i].corner] = p;
+    fresh.push_back(n);
+  }
+  // A corner of the cavity on none of its boundary faces would be left out of the mesh.
+  std::vector<int> kept, corners;
+  for (const Tet& n : fresh) kept.insert(kept.end(), n.begin(), n.end());
+  for (int u : cavity) corners.insert(corners.end(), m.tet(u).begin(), m.tet(u).end());
+  std::sort(kept.begin(), kept.end());
+  for (int v : corners)
+    if (!std::binary_search(kept.begin(), kept.end(), v)) {
+      m.remove_last_point();
+      return false;
+    }
+  return try_star(m, cavity, fresh);
+}
+
+}  // namespace
+
+double least_dihedral_deg(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  if (!(mesh::tet_volume6(a, b, c, d) > 0.0)) return kFlat;
+  const Vec3 p[4] = {a, b, c, d};
+  static const int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  Vec3 n[4];
+  for (int f = 0; f < 4; ++f) {
+    n[f] = (p[kFace[f][1]] - p[kFace[f][0]]).cross(p[kFace[f][2]] - p[kFace[f][0]]);
+    const double length = n[f].norm();
+    if (!(length > 0.0)) return kFlat;
+    n[f] /= length;
+  }
+  // The dihedral angle between faces f and g is acos(-n_f . n_g): the least angle has the
+  // largest -n_f . n_g.
+  double largest = -1.0;
+  for (int f = 0; f < 4; ++f)
+    for (int g = f + 1; g < 4; ++g) largest = std::max(largest, -n[f].dot(n[g]));
+  return std::acos(std::clamp(largest, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+}
+
+SliverReport remove_slivers(std::vector<Vec3>& points, std::vector<Tet>& tets, int first_free,
+                            const SliverOptions& options) {
+  SliverReport report;
+  Mesh m(points, tets);
+  auto census = [&](int& below, double& least) {
+    below = 0;
+    least = std::numeric_limits<double>::infinity();
+    for (int t = 0; t < m.num_tets(); ++t) {
+      if (!m.alive(t)) continue;
+      const double q = m.dihedral(t);
+      if (q < options.min_dihedral_deg) ++below;
+      if (q < least) {
+        least = q;
+        report.worst_at = Vec3::Zero();
+        for (int v : m.tet(t)) report.worst_at += 0.25 * m.point(v);
+      }
+    }
+  };
+  census(report.below_before, report.least_before);
+  auto bad = [&](int t) { return m.alive(t) && m.dihedral(t) < options.min_dihedral_deg; };
+  std::vector<int> candidates;
+  for (int t = 0; t < m.num_tets(); ++t)
+    if (bad(t)) candidates.push_back(t);
+  static const int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  for (int pass = 0; pass < options.passes && !candidates.empty(); ++pass) {
+    m.take_touched();
+    for (int t : candidates) {
+      if (!bad(t)) continue;
+      bool done = false;
+      for (int c = 0; c < 4 && !done; ++c)
+        if (try_flip23(m, t, c)) ++report.flips, done = true;
+      for (int e = 0; e < 6 && !done; ++e)
+        if (try_edge_removal(m, m.tet(t)[kEdges[e][0]], m.tet(t)[kEdges[e][1]])) ++report.flips, done = true;
+      if (!done) {
+        const Tet corners = m.tet(t);
+        for (int v : corners)
+          if (v >= first_free && try_smooth(m, v)) ++report.moves;
+        done = !bad(t);
+      }
+      for (int e = 0; e < 6 && !done; ++e)
+        if (try_edge_split(m, m.tet(t)[kEdges[e][0]], m.tet(t)[kEdges[e][1]])) ++report.insertions, done = true;
+      if (!done && try_insert(m, t)) ++report.insertions;
+    }
+    // Next pass: what is still under the goal among the tetrahedra worked on or touched.
+    std::vector<int> next = m.take_touched();
+    next.insert(next.end(), candidates.begin(), candidates.end());
+    std::sort(next.begin(), next.end());
+    next.erase(std::unique(next.begin(), next.end()), next.end());
+    candidates.clear();
+    for (int t : next)
+      if (bad(t)) candidates.push_back(t);
+  }
+  m.compact();
+  census(report.below_after, report.least_after);
+  return report;
+}
+
+}  // namespace vesselmesh::volume
