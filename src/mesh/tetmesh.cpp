@@ -33,16 +33,26 @@ std::array<Tet, 3> split_prism(const Prism& p) {
   return tets;
 }
 
-std::array<double, 6> dihedral_angles(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  // Outward-facing normals of the faces opposite each corner (orientation-independent angles).
+namespace {
+
+// The unit normals of the faces opposite each corner, all outward or all inward (so the angles
+// between them do not depend on the orientation); zero for a degenerate face.
+std::array<Vec3, 4> unit_face_normals(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   const Vec3 p[4] = {a, b, c, d};
-  Vec3 n[4];
+  std::array<Vec3, 4> n;
   static const int face[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
   for (int f = 0; f < 4; ++f) {
     n[f] = (p[face[f][1]] - p[face[f][0]]).cross(p[face[f][2]] - p[face[f][0]]);
     const double len = n[f].norm();
     if (len > 0) n[f] /= len;
   }
+  return n;
+}
+
+}  // namespace
+
+std::array<double, 6> dihedral_angles(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const std::array<Vec3, 4> n = unit_face_normals(a, b, c, d);
   // The edge between corners (i, j) is shared by the faces opposite the other two corners.
   static const int edge_faces[6][2] = {{2, 3}, {1, 3}, {1, 2}, {0, 3}, {0, 2}, {0, 1}};
   std::array<double, 6> angles{};
@@ -51,6 +61,15 @@ std::array<double, 6> dihedral_angles(const Vec3& a, const Vec3& b, const Vec3& 
     angles[e] = std::acos(cosine);
   }
   return angles;
+}
+
+double least_dihedral_angle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const std::array<Vec3, 4> n = unit_face_normals(a, b, c, d);
+  // The angle between faces f and g is acos(-n_f . n_g): the least has the largest cosine.
+  double largest = -1.0;
+  for (int f = 0; f < 4; ++f)
+    for (int g = f + 1; g < 4; ++g) largest = std::max(largest, -n[f].dot(n[g]));
+  return std::acos(std::clamp(largest, -1.0, 1.0));
 }
 
 double scaled_jacobian(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {

@@ -71,6 +71,8 @@ inline std::array<Vec3, 4> barycentric_gradients(const Vec3& a, const Vec3& b, c
 
 // The six dihedral angles of a tetrahedron, in radians.
 std::array<double, 6> dihedral_angles(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+// The least of them (one arc cosine instead of six).
+double least_dihedral_angle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 
 // The scaled Jacobian of a tetrahedron: its signed volume divided by the largest product of
 // the three edge lengths at a corner, times sqrt(2); 1 for the regular tetrahedron, <= 0 when

@@ -12,6 +12,9 @@ namespace {
 
 constexpr double kFlat = -1.0;  // the quality of a flat or inverted tetrahedron
 
+// The face opposite corner c of a positive tetrahedron t, ordered so that (face, t[c]) is positive.
+constexpr int kFaceOpposite[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
+
 // What an operation must raise: the least dihedral angle (degrees), capped by 60 x the
 // volume-length measure 6 sqrt(2) V / l_rms^3 (1 for the regular tetrahedron, 0 for a flat
 // one), so that a sliver is never traded for a needle or a cap: those keep fair dihedral angles
@@ -136,8 +139,7 @@ bool try_flip23(Mesh& m, int t, int c) {
   const int d = tt[c];
   // (a, b, c) with d on its positive side: a positive tetrahedron (a, b, c, d) is tt with d last.
   int face[3], k = 0;
-  static const int kOrder[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};  // (x, y, z, tt[c]) positive
-  for (int i : kOrder[c]) face[k++] = tt[i];
+  for (int i : kFaceOpposite[c]) face[k++] = tt[i];
   std::vector<int> shared = m.holding({face[0], face[1], face[2]});
   if (shared.size() != 2) return false;  // a boundary face
   const int u = shared[0] == t ? shared[1] : shared[0];
@@ -306,9 +308,8 @@ bool try_edge_split(Mesh& m, int c, int d) {
 bool try_insert(Mesh& m, int t) {
   const Tet tt = m.tet(t);
   std::vector<int> cavity = {t};
-  static const int kOrder[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
   for (int c = 0; c < 4; ++c) {
-    const std::vector<int> shared = m.holding({tt[kOrder[c][0]], tt[kOrder[c][1]], tt[kOrder[c][2]]});
+    const std::vector<int> shared = m.holding({tt[kFaceOpposite[c][0]], tt[kFaceOpposite[c][1]], tt[kFaceOpposite[c][2]]});
     for (int u : shared)
       if (u != t) cavity.push_back(u);
   }
@@ -357,35 +358,25 @@ bool try_insert(Mesh& m, int t) {
 }  // namespace
 
 double least_dihedral_deg(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  if (!(mesh::tet_volume6(a, b, c, d) > 0.0)) return kFlat;
-  const Vec3 p[4] = {a, b, c, d};
-  static const int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-  Vec3 n[4];
-  for (int f = 0; f < 4; ++f) {
-    n[f] = (p[kFace[f][1]] - p[kFace[f][0]]).cross(p[kFace[f][2]] - p[kFace[f][0]]);
-    const double length = n[f].norm();
-    if (!(length > 0.0)) return kFlat;
-    n[f] /= length;
-  }
-  // The dihedral angle between faces f and g is acos(-n_f . n_g): the least angle has the
-  // largest -n_f . n_g.
-  double largest = -1.0;
-  for (int f = 0; f < 4; ++f)
-    for (int g = f + 1; g < 4; ++g) largest = std::max(largest, -n[f].dot(n[g]));
-  return std::acos(std::clamp(largest, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  if (!(mesh::tet_volume6(a, b, c, d) > 0.0)) return kFlat;  // positive: no face is degenerate
+  return mesh::least_dihedral_angle(a, b, c, d) * 180.0 / std::numbers::pi;
 }
 
 SliverReport remove_slivers(std::vector<Vec3>& points, std::vector<Tet>& tets, int first_free,
                             const SliverOptions& options) {
   SliverReport report;
   Mesh m(points, tets);
-  auto census = [&](int& below, double& least) {
+  // Counts the tetrahedra under the goal (listing them in `bad_ones` when given) and finds the worst.
+  auto census = [&](int& below, double& least, std::vector<int>* bad_ones) {
     below = 0;
     least = std::numeric_limits<double>::infinity();
     for (int t = 0; t < m.num_tets(); ++t) {
       if (!m.alive(t)) continue;
       const double q = m.dihedral(t);
-      if (q < options.min_dihedral_deg) ++below;
+      if (q < options.min_dihedral_deg) {
+        ++below;
+        if (bad_ones) bad_ones->push_back(t);
+      }
       if (q < least) {
         least = q;
         report.worst_at = Vec3::Zero();
@@ -393,11 +384,9 @@ SliverReport remove_slivers(std::vector<Vec3>& points, std::vector<Tet>& tets, i
       }
     }
   };
-  census(report.below_before, report.least_before);
-  auto bad = [&](int t) { return m.alive(t) && m.dihedral(t) < options.min_dihedral_deg; };
   std::vector<int> candidates;
-  for (int t = 0; t < m.num_tets(); ++t)
-    if (bad(t)) candidates.push_back(t);
+  census(report.below_before, report.least_before, &candidates);
+  auto bad = [&](int t) { return m.alive(t) && m.dihedral(t) < options.min_dihedral_deg; };
   static const int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   for (int pass = 0; pass < options.passes && !candidates.empty(); ++pass) {
     m.take_touched();
@@ -428,7 +417,7 @@ SliverReport remove_slivers(std::vector<Vec3>& points, std::vector<Tet>& tets, i
       if (bad(t)) candidates.push_back(t);
   }
   m.compact();
-  census(report.below_after, report.least_after);
+  census(report.below_after, report.least_after, nullptr);
   return report;
 }
 

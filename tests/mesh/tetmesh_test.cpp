@@ -89,6 +89,20 @@ TEST(TetShape, CornerTetrahedronAnglesAndJacobian) {
   EXPECT_NEAR(scaled_jacobian(o, x, y, z), std::numbers::sqrt2 / 2.0, 1e-12);
 }
 
+TEST(TetShape, LeastDihedralAngleIsTheLeastOfTheSix) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  auto point = [&] { return Vec3(coordinate(random), coordinate(random), coordinate(random)); };
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 a = point(), b = point(), c = point(), d = point();
+    const std::array<double, 6> angles = dihedral_angles(a, b, c, d);
+    const double least = *std::min_element(angles.begin(), angles.end());
+    EXPECT_NEAR(least_dihedral_angle(a, b, c, d), least, 1e-12);
+    EXPECT_NEAR(least_dihedral_angle(b, a, c, d), least, 1e-12);  // either orientation
+  }
+  EXPECT_NEAR(least_dihedral_angle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}), std::acos(1.0 / std::sqrt(3.0)), 1e-12);
+}
+
 TEST(TetBoundary, OneTetrahedronHasFourOutwardFaces) {
   const std::vector<Tet> tets = {{0, 1, 2, 3}};
   const std::vector<Vec3> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
