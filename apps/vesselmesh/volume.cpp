@@ -109,6 +109,12 @@ Command add_volume_command(CLI::App& parent) {
   app->add_option("--growth", o->volume.layer.growth, "Height ratio of successive layers, from the wall (1: uniform)")
       ->check(CLI::Range(0.2, 5.0))
       ->capture_default_str();
+  app->add_option("--layer-angle", o->volume.layer.min_angle_deg,
+                  "The layer grows thicker than asked (up to half the radius, reported) where the wall's triangles are "
+                  "so large against its thinnest layer that its tetrahedra would have a dihedral angle under this "
+                  "(degrees); 0: the thickness asked, whatever the angles")
+      ->check(CLI::Range(0.0, 30.0))
+      ->capture_default_str();
   app->add_option("--algorithm", o->algorithm,
                   "Interior tetrahedra: delaunay (Gmsh's; the same mesh run after run), hxt (Gmsh's HXT: threaded, "
                   "fewer slivers, but not the same mesh twice), tetgen (TetGen 1.5: quality-bounded, the same mesh "
@@ -191,6 +197,12 @@ Command add_volume_command(CLI::App& parent) {
               json["shrink"] = {{"wall_points", r.shrunk_vertices},
                                 {"least_fraction", round_to(r.least_fraction, 4)},
                                 {"least_at", to_json(r.least_at)}};
+              json["thicken"] = {{"angle_deg", options.layer.min_angle_deg},
+                                 {"wall_points", r.thickened_vertices},
+                                 {"most_fraction", round_to(r.most_fraction, 4)},
+                                 {"most_at", to_json(r.most_at)},
+                                 {"under_angle_prisms", r.under_angle_prisms},
+                                 {"least_layer_angle_deg", round_to(r.least_layer_angle, 4)}};
               json["seconds"] = round_to(seconds, 4);
               print_json(json);
             } else {

@@ -106,10 +106,12 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
     if (c.factor <= 1.0) r.fail("reference.factor", "must be more than 1 (each level has that many times the triangles)");
   }
   if (const toml::table* t = root["volume"].as_table()) {
-    r.known_keys(*t, "volume", {"layers", "thickness_ratio", "algorithm", "inlet", "end_names"});
+    r.known_keys(*t, "volume", {"layers", "thickness_ratio", "layer_angle", "algorithm", "inlet", "end_names"});
     const io::TomlView v = root["volume"];
     c.layers = r.integer(v["layers"], "volume.layers", c.layers, 0);
     c.thickness_ratio = r.number(v["thickness_ratio"], "volume.thickness_ratio", c.thickness_ratio);
+    c.layer_angle = r.number(v["layer_angle"], "volume.layer_angle", c.layer_angle);
+    if (!(c.layer_angle >= 0.0 && c.layer_angle <= 30.0)) r.fail("volume.layer_angle", "give 0 to 30 degrees");
     c.algorithm = r.text(v["algorithm"], "volume.algorithm", c.algorithm);
     try {
       volume::parse_fill_algorithm(c.algorithm);
@@ -197,9 +199,10 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
   result.seconds["input analysis"] = since(step);
 
   // What every mesh depends on: the input's bytes, the options, the version.
-  std::string common = fmt::format("vesselmesh {}\n{}\nunits={}\nlayers={} ratio={} algorithm={} inlet={}\n",
+  std::string common = fmt::format("vesselmesh {}\n{}\nunits={}\nlayers={} ratio={} layer_angle={} algorithm={} inlet={}\n",
                                    VESSELMESH_VERSION, fingerprint(io::read_file(config.surface)), config.units,
-                                   config.layers, config.thickness_ratio, config.algorithm, config.inlet);
+                                   config.layers, config.thickness_ratio, config.layer_angle, config.algorithm,
+                                   config.inlet);
   for (const std::string& n : config.end_names) common += n + ",";
   for (const volume::EndAt& e : config.end_at)
     common += fmt::format("\nend {} {} {} {}", e.name, e.point.x(), e.point.y(), e.point.z());
@@ -265,6 +268,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       volume::VolumeOptions vo;
       vo.layer.layers = config.layers;
       vo.layer.thickness_ratio = config.thickness_ratio;
+      vo.layer.min_angle_deg = config.layer_angle;
       vo.algorithm = volume::parse_fill_algorithm(config.algorithm);
       vo.inlet = config.inlet;
       vo.end_names = config.end_names;

@@ -19,7 +19,9 @@
 //   triangles = 8000           # the four meshes' surface triangles
 //   meshes = ["uniform", "distance", "curvature", "anisotropic"]
 //   [reference] levels = 4, factor = 2.0
-//   [volume]    layers = 4, thickness_ratio = 0.1, algorithm = "delaunay", inlet = K,
+//   [volume]    layers = 4, thickness_ratio = 0.1, layer_angle = 0 (the paper's layer on every
+//               mesh: a layer thickened for its angles on some meshes only would confound the
+//               comparison; see volume/boundary_layer.h), algorithm = "delaunay", inlet = K,
 //               end_names = ["inlet", "outlet_1", ...]
 //   [post]      time = 0.21 (s; default the last saved)
 //   [[ring]]    name = "ring1", point = [x, y, z], normal = [nx, ny, nz] (omit it: the plane
@@ -53,6 +55,7 @@ struct StudyConfig {
   double factor = 2.0;
   int layers = 4;
   double thickness_ratio = 0.1;
+  double layer_angle = 0.0;  // degrees: volume::BoundaryLayerOptions::min_angle_deg
   std::string algorithm = "delaunay";
   int inlet = -1;
   std::vector<std::string> end_names;

@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 
 namespace vesselmesh::volume {
 namespace {
@@ -25,6 +27,8 @@ void check_options(const BoundaryLayerOptions& o) {
   if (!(o.shrink_slope > 0.0)) throw OptionError("the shrink slope must be > 0");
   if (!(o.min_thickness_fraction > 0.0 && o.min_thickness_fraction < 1.0))
     throw OptionError("the least thickness fraction must be in (0, 1)");
+  if (!(o.min_angle_deg >= 0.0 && o.min_angle_deg <= 30.0))
+    throw OptionError(fmt::format("--layer-angle {}: give an angle in [0, 30] degrees (0: no thickening)", o.min_angle_deg));
 }
 
 // Per wall point: the unit normal of its end's plane for loop points, zero elsewhere.
@@ -68,6 +72,29 @@ std::vector<Vec3> column_directions(const TriMesh& wall, const mesh::EdgeMap& ed
   return normal;
 }
 
+// Per wall vertex: the thickness under which its prisms' tetrahedra fall below `angle_deg`. A
+// prism of height h over a triangle whose largest altitude is a splits into tetrahedra whose
+// least dihedral angle is atan(h / a) when the column stands straight; a column leaning from
+// the triangle's normal shortens h by the cosine. The thinnest layer counts.
+std::vector<double> angle_floors(const TriMesh& wall, const std::vector<Vec3>& direction,
+                                 const std::vector<double>& fraction, double angle_deg) {
+  std::vector<double> floor(wall.num_points(), 0.0);
+  if (!(angle_deg > 0.0)) return floor;
+  double step = 1.0;
+  for (size_t k = 0; k + 1 < fraction.size(); ++k) step = std::min(step, fraction[k + 1] - fraction[k]);
+  const double slope = std::tan(angle_deg * std::numbers::pi / 180.0) / step;
+  for (const Triangle& f : wall.triangles) {
+    const Vec3 cross = (wall.points[f[1]] - wall.points[f[0]]).cross(wall.points[f[2]] - wall.points[f[0]]);
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 3; ++i) shortest = std::min(shortest, (wall.points[f[(i + 1) % 3]] - wall.points[f[i]]).norm());
+    if (!(cross.norm() > 0.0 && shortest > 0.0)) continue;
+    const double altitude = cross.norm() / shortest;
+    const Vec3 inward = -cross.normalized();
+    for (int v : f) floor[v] = std::max(floor[v], slope * altitude / std::max(0.3, direction[v].dot(inward)));
+  }
+  return floor;
+}
+
 }  // namespace
 
 std::vector<double> layer_fractions(int layers, double growth) {
@@ -97,8 +124,23 @@ BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double
     out.target[v] = options.thickness_ratio * radius[v];
   }
   const std::vector<double> fraction = layer_fractions(options.layers, options.growth);
+  const double growth = std::exp(options.shrink_slope);
+  // The thickness to start from: the target, or more where the angle floor asks (5 % above it,
+  // spread to the neighbours with the shrink's slope, at most half the radius).
+  out.angle_floor = angle_floors(wall, out.direction, fraction, options.min_angle_deg);
+  auto start_from = [&](const std::vector<double>& floor) {
+    std::vector<double> spread(n), start = out.target;
+    for (int v = 0; v < n; ++v) spread[v] = -1.05 * floor[v];
+    sizing::grade_sizes(wall, spread, growth);
+    for (int v = 0; v < n; ++v) start[v] = std::max(start[v], std::min(-spread[v], 0.5 * radius[v]));
+    return start;
+  };
   const int levels = out.levels;
   out.points.resize(static_cast<size_t>(levels) * n);
+  // The prism over wall triangle f between levels k and k + 1.
+  auto level_prism = [n](const Triangle& f, int k) -> Prism {
+    return {k * n + f[0], k * n + f[1], k * n + f[2], (k + 1) * n + f[0], (k + 1) * n + f[1], (k + 1) * n + f[2]};
+  };
   auto place = [&](const std::vector<double>& thickness) {
     for (int k = 0; k < levels; ++k)
       for (int v = 0; v < n; ++v) out.points[k * n + v] = wall.points[v] + fraction[k] * thickness[v] * out.direction[v];
@@ -147,79 +189,110 @@ BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double
       d = turned.normalized();
     }
   };
-  std::vector<double> limit = out.target;
-  const double growth = std::exp(options.shrink_slope);
+  // The least dihedral angle (degrees) of the tetrahedra of wall triangle f's prism at level k.
+  auto prism_angle = [&](const Triangle& f, int k) {
+    double least = 180.0;
+    for (const Tet& t : mesh::split_prism(level_prism(f, k)))
+      least = std::min(least, mesh::least_dihedral_angle(out.points[t[0]], out.points[t[1]], out.points[t[2]],
+                                                         out.points[t[3]]) * 180.0 / std::numbers::pi);
+    return least;
+  };
   std::vector<char> bad(n, 0);
-  constexpr int kMaxRounds = 60;
-  for (int round = 0;; ++round) {
-    sizing::grade_sizes(wall, limit, growth);
-    place(limit);
-    std::fill(bad.begin(), bad.end(), 0);
-    int local_failures = 0;
-    // Inner edges keep a quarter of their wall length (in the edge's own direction).
-    for (const auto& [a, b] : edges.edges) {
-      const Vec3 e = wall.points[b] - wall.points[a];
-      const Vec3 inner = out.points[(levels - 1) * n + b] - out.points[(levels - 1) * n + a];
-      if (inner.dot(e) < 0.25 * e.squaredNorm()) bad[a] = bad[b] = 1, ++local_failures;
+  constexpr int kMaxRounds = 60, kAnglePasses = 4;
+  std::vector<double> limit;
+  for (int pass = 0;; ++pass) {
+    const std::vector<double> start = start_from(out.angle_floor);
+    limit = start;
+    for (int round = 0;; ++round) {
+      sizing::grade_sizes(wall, limit, growth);
+      place(limit);
+      std::fill(bad.begin(), bad.end(), 0);
+      int local_failures = 0;
+      // Inner edges keep a quarter of their wall length (in the edge's own direction).
+      for (const auto& [a, b] : edges.edges) {
+        const Vec3 e = wall.points[b] - wall.points[a];
+        const Vec3 inner = out.points[(levels - 1) * n + b] - out.points[(levels - 1) * n + a];
+        if (inner.dot(e) < 0.25 * e.squaredNorm()) bad[a] = bad[b] = 1, ++local_failures;
+      }
+      // Prisms: positive tetrahedra (at least 5 % of a right prism's volume) and top faces that
+      // turn less than 60 degrees.
+      for (const Triangle& f : wall.triangles) {
+        const Vec3 base = (wall.points[f[1]] - wall.points[f[0]]).cross(wall.points[f[2]] - wall.points[f[0]]);
+        bool ok = true;
+        for (int k = 0; ok && k + 1 < levels; ++k) {
+          const Prism p = level_prism(f, k);
+          const double height = (fraction[k + 1] - fraction[k]) * (limit[f[0]] + limit[f[1]] + limit[f[2]]) / 3.0;
+          for (const Tet& t : mesh::split_prism(p))
+            if (mesh::tet_volume6(out.points[t[0]], out.points[t[1]], out.points[t[2]], out.points[t[3]]) <
+                0.05 * base.norm() * height)
+              ok = false;
+          const Vec3& a = out.points[p[3]];
+          const Vec3 top = (out.points[p[4]] - a).cross(out.points[p[5]] - a);
+          if (top.dot(base) < 0.5 * top.norm() * base.norm()) ok = false;
+        }
+        if (!ok) bad[f[0]] = bad[f[1]] = bad[f[2]] = 1, ++local_failures;
+      }
+      int crossings = 0;
+      if (local_failures == 0) {
+        // The layer's closed boundary: wall, strips, inner surface turned inside out.
+        TriMesh closed;
+        closed.points = out.points;
+        closed.triangles = wall.triangles;
+        for (const auto& strip : out.end_strips) closed.triangles.insert(closed.triangles.end(), strip.begin(), strip.end());
+        for (const Triangle& f : wall.triangles)
+          closed.triangles.push_back({(levels - 1) * n + f[0], (levels - 1) * n + f[2], (levels - 1) * n + f[1]});
+        for (const auto& [s, t] : mesh::self_intersecting_pairs(closed)) {
+          for (int v : closed.triangles[s]) bad[v % n] = 1;
+          for (int v : closed.triangles[t]) bad[v % n] = 1;
+          ++crossings;
+        }
+      }
+      if (local_failures == 0 && crossings == 0) break;
+      // Shrink the marked columns; one that cannot shrink further is an error naming it. A
+      // column nearly tangent to one of its triangles folds at any height: it turns toward that
+      // triangle's normal first (the direction every triangle around sees best).
+      for (int v = 0; v < n; ++v) {
+        if (!bad[v]) continue;
+        turn_toward_visible(v);
+        limit[v] *= 0.7;
+        if (limit[v] < options.min_thickness_fraction * out.target[v] || round == kMaxRounds) {
+          throw InputError(fmt::format(
+              "the boundary layer cannot be built near wall point {} {}: its columns {} even at {:.1f} % of the "
+              "thickness asked for; remesh the surface finer there or lower --thickness-ratio",
+              v, mesh::format_point(wall.points[v]),
+              local_failures > 0 ? "fold or invert" : "cross another part of the layer",
+              100.0 * options.min_thickness_fraction));
+        }
+      }
+      reporter.info(fmt::format("boundary layer: round {}: {} folding places, {} crossing pairs; shrinking there",
+                                round + 1, local_failures, crossings));
     }
-    // Prisms: positive tetrahedra (at least 5 % of a right prism's volume) and top faces that
-    // turn less than 60 degrees.
+    // Prisms still under the angle where nothing held their columns down (no shrink, no cap at
+    // half the radius): the floor's estimate fell short (inner levels widen where the wall is
+    // concave; leaning columns). Raise those floors by what the angle missed and build again.
+    if (!(options.min_angle_deg > 0.0) || pass + 1 == kAnglePasses) break;
+    const double wanted = std::tan(options.min_angle_deg * std::numbers::pi / 180.0);
+    bool raised = false;
     for (const Triangle& f : wall.triangles) {
-      const Vec3 base = (wall.points[f[1]] - wall.points[f[0]]).cross(wall.points[f[2]] - wall.points[f[0]]);
-      bool ok = true;
-      for (int k = 0; ok && k + 1 < levels; ++k) {
-        const Prism p = {k * n + f[0], k * n + f[1], k * n + f[2], (k + 1) * n + f[0], (k + 1) * n + f[1], (k + 1) * n + f[2]};
-        const double height = (fraction[k + 1] - fraction[k]) * (limit[f[0]] + limit[f[1]] + limit[f[2]]) / 3.0;
-        for (const Tet& t : mesh::split_prism(p))
-          if (mesh::tet_volume6(out.points[t[0]], out.points[t[1]], out.points[t[2]], out.points[t[3]]) <
-              0.05 * base.norm() * height)
-            ok = false;
-        const Vec3& a = out.points[p[3]];
-        const Vec3 top = (out.points[p[4]] - a).cross(out.points[p[5]] - a);
-        if (top.dot(base) < 0.5 * top.norm() * base.norm()) ok = false;
-      }
-      if (!ok) bad[f[0]] = bad[f[1]] = bad[f[2]] = 1, ++local_failures;
-    }
-    int crossings = 0;
-    if (local_failures == 0) {
-      // The layer's closed boundary: wall, strips, inner surface turned inside out.
-      TriMesh closed;
-      closed.points = out.points;
-      closed.triangles = wall.triangles;
-      for (const auto& strip : out.end_strips) closed.triangles.insert(closed.triangles.end(), strip.begin(), strip.end());
-      for (const Triangle& f : wall.triangles)
-        closed.triangles.push_back({(levels - 1) * n + f[0], (levels - 1) * n + f[2], (levels - 1) * n + f[1]});
-      for (const auto& [s, t] : mesh::self_intersecting_pairs(closed)) {
-        for (int v : closed.triangles[s]) bad[v % n] = 1;
-        for (int v : closed.triangles[t]) bad[v % n] = 1;
-        ++crossings;
+      double least = 180.0;
+      for (int k = 0; k + 1 < levels; ++k) least = std::min(least, prism_angle(f, k));
+      if (least >= options.min_angle_deg) continue;
+      const double factor = wanted / std::tan(std::max(least, 0.5) * std::numbers::pi / 180.0);
+      for (int v : f) {
+        if (limit[v] < 0.999 * start[v] || start[v] >= 0.5 * radius[v] * (1.0 - 1e-9)) continue;
+        out.angle_floor[v] = std::max(out.angle_floor[v], factor * limit[v]);
+        raised = true;
       }
     }
-    if (local_failures == 0 && crossings == 0) break;
-    // Shrink the marked columns; one that cannot shrink further is an error naming it. A
-    // column nearly tangent to one of its triangles folds at any height: it turns toward that
-    // triangle's normal first (the direction every triangle around sees best).
-    for (int v = 0; v < n; ++v) {
-      if (!bad[v]) continue;
-      turn_toward_visible(v);
-      limit[v] *= 0.7;
-      if (limit[v] < options.min_thickness_fraction * out.target[v] || round == kMaxRounds) {
-        throw InputError(fmt::format(
-            "the boundary layer cannot be built near wall point {} {}: its columns {} even at {:.1f} % of the "
-            "thickness asked for; remesh the surface finer there or lower --thickness-ratio",
-            v, mesh::format_point(wall.points[v]),
-            local_failures > 0 ? "fold or invert" : "cross another part of the layer",
-            100.0 * options.min_thickness_fraction));
-      }
-    }
-    reporter.info(fmt::format("boundary layer: round {}: {} folding places, {} crossing pairs; shrinking there",
-                              round + 1, local_failures, crossings));
+    if (!raised) break;
+    reporter.info(fmt::format("boundary layer: angle pass {}: columns under {} degrees thickened", pass + 1,
+                              options.min_angle_deg));
   }
   out.thickness = limit;
 
   for (const Triangle& f : wall.triangles) {
     for (int k = 0; k + 1 < levels; ++k) {
-      out.prisms.push_back({k * n + f[0], k * n + f[1], k * n + f[2], (k + 1) * n + f[0], (k + 1) * n + f[1], (k + 1) * n + f[2]});
+      out.prisms.push_back(level_prism(f, k));
       out.prism_layer.push_back(k + 1);
       out.prism_column.push_back(static_cast<int>(&f - wall.triangles.data()));
     }
@@ -229,7 +302,15 @@ BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double
     const double kept = out.thickness[v] / out.target[v];
     if (kept < 0.999) ++out.shrunk_vertices;
     if (kept < out.least_fraction) out.least_fraction = kept, out.least_at = wall.points[v];
+    if (kept > 1.001) ++out.thickened_vertices;
+    if (kept > out.most_fraction) out.most_fraction = kept, out.most_at = wall.points[v];
   }
+  for (const Triangle& f : wall.triangles)
+    for (int k = 0; k + 1 < levels; ++k) {
+      const double least = prism_angle(f, k);
+      if (least < out.least_angle) out.least_angle = least, out.least_angle_at = wall.points[f[0]];
+      if (options.min_angle_deg > 0.0 && least < options.min_angle_deg) ++out.under_angle_prisms;
+    }
   return out;
 }
 

@@ -5,6 +5,12 @@
 // open end's loop they are turned into the end's plane, so the layer ends flush with it.
 // Thickness: `thickness_ratio` x the local radius (the distance map's inscribed-sphere
 // radius), split into `layers` heights growing by `growth` from the wall (1: uniform).
+// Where the wall's triangles are large against the thinnest layer's height, the thickness grows
+// (up to half the radius), so that the prisms' tetrahedra keep `min_angle_deg`: a prism of
+// height h over a triangle of largest altitude a splits into tetrahedra whose least dihedral
+// angle is about atan(h / a); where the built prisms still fall short (inner levels widen where
+// the wall is concave, columns lean), their columns grow again by what they missed (up to 3
+// times). The growth spreads to the neighbours with the shrink's slope.
 // Where columns converge (narrow places, tight bends, noisy spots) the thickness shrinks,
 // smoothly (it changes by at most `shrink_slope` per unit length along the wall), until
 //   - every layer prism splits into three positive tetrahedra whose top triangle turns less
@@ -34,6 +40,9 @@ struct BoundaryLayerOptions {
   int normal_smoothing = 4;
   double shrink_slope = 0.2;
   double min_thickness_fraction = 0.02;
+  // The layer's tetrahedra keep this least dihedral angle (degrees) where the thickness may grow
+  // for it (see above); 0: the thickness asked for, whatever the angles.
+  double min_angle_deg = 5.0;
 };
 
 // An open end of the wall: its boundary loop (wall vertex indices, in the direction of the
@@ -57,11 +66,23 @@ struct BoundaryLayer {
   std::vector<std::vector<int>> inner_loops;
   // Per wall vertex: the thickness built and the one asked for (ratio x radius).
   std::vector<double> thickness, target;
+  // Per wall vertex: the thickness its prisms need for min_angle_deg (0 without that goal):
+  // estimated from the wall's triangles, raised where the built prisms fell short.
+  std::vector<double> angle_floor;
   std::vector<Vec3> direction;  // unit, inward
   // Shrink report: vertices below 99.9 % of their target, the least fraction kept and where.
   int shrunk_vertices = 0;
   double least_fraction = 1.0;
   Vec3 least_at = Vec3::Zero();
+  // Thickening report: vertices above 100.1 % of their target, the most and where; the layer's
+  // least dihedral angle (degrees) and where; prisms left under min_angle_deg (their columns
+  // held at half the radius, or shrunk).
+  int thickened_vertices = 0;
+  double most_fraction = 1.0;
+  Vec3 most_at = Vec3::Zero();
+  double least_angle = 180.0;
+  Vec3 least_angle_at = Vec3::Zero();
+  int under_angle_prisms = 0;
 };
 
 // `wall`: outward-oriented, manifold, its boundary loops exactly the `ends`; `radius` per wall

@@ -200,6 +200,11 @@ VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::Op
     report.shrunk_vertices = layer.shrunk_vertices;
     report.least_fraction = layer.least_fraction;
     report.least_at = layer.least_at;
+    report.thickened_vertices = layer.thickened_vertices;
+    report.most_fraction = layer.most_fraction;
+    report.most_at = layer.most_at;
+    report.under_angle_prisms = layer.under_angle_prisms;
+    report.least_layer_angle = layer.least_angle;
     report.min_thickness_ratio = 1e300;
     for (int v = 0; v < n; ++v) {
       const double ratio = layer.thickness[v] / wall_radius[v];
@@ -210,6 +215,18 @@ VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::Op
       reporter.warning(fmt::format("boundary layer thinner than asked at {} of {} wall points (down to {:.0f} % near {})",
                                    layer.shrunk_vertices, n, 100.0 * layer.least_fraction,
                                    mesh::format_point(layer.least_at)));
+    if (layer.thickened_vertices > 0)
+      reporter.info(fmt::format("boundary layer thicker than asked at {} of {} wall points (up to {:.2f} times near {}): "
+                                "the wall's triangles are large there against the thinnest layer, whose "
+                                "tetrahedra would fall under {} degrees (--layer-angle 0 keeps the thickness asked)",
+                                layer.thickened_vertices, n, layer.most_fraction, mesh::format_point(layer.most_at),
+                                options.layer.min_angle_deg));
+    if (layer.under_angle_prisms > 0)
+      reporter.warning(fmt::format("{} of {} layer prisms have tetrahedra under {} degrees (least {:.2f} near {}): "
+                                   "their columns were shrunk or held at half the radius; remesh the wall finer there "
+                                   "or ask fewer --layers",
+                                   layer.under_angle_prisms, layer.prisms.size(), options.layer.min_angle_deg,
+                                   layer.least_angle, mesh::format_point(layer.least_angle_at)));
   } else {
     points = wall.mesh.points;
     inner = wall.mesh.triangles;

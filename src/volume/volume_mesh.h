@@ -69,6 +69,11 @@ struct VolumeReport {
   SliverReport slivers;        // the interior's clean-up
   double least_fraction = 1.0;  // of the thickness asked for, and where
   Vec3 least_at = Vec3::Zero();
+  int thickened_vertices = 0;        // wall points whose layer is thicker than asked (for its angles)
+  double most_fraction = 1.0;        // of the thickness asked for, and where
+  Vec3 most_at = Vec3::Zero();
+  int under_angle_prisms = 0;        // layer prisms whose tetrahedra stay under the angle asked
+  double least_layer_angle = 180.0;  // degrees, over the layer's tetrahedra
   double min_thickness_ratio = 0.0, max_thickness_ratio = 0.0;  // layer thickness / local radius
   std::vector<VolumeEnd> ends;
   int wall_tag = 1;

@@ -428,6 +428,24 @@ TEST(Cli, VolumeWritesTaggedMeshesThatQualityReadsBack) {
   EXPECT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.vtk")}).code, 2);
   EXPECT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.msh"), "--inlet", "5"}).code, 2);
   EXPECT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.msh"), "--thickness-ratio", "0.9"}).code, 2);
+  EXPECT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.msh"), "--layer-angle", "40"}).code, 2);
+  EXPECT_FALSE(std::filesystem::exists(tmp.path("x.msh")));
+  // Ten layers of 0.02 mm on 0.4 mm edges: about 3.3 degrees as asked (--layer-angle 0); by
+  // default the layer grows there until its tetrahedra keep 5 degrees, and says so.
+  EXPECT_EQ(j["thicken"]["wall_points"].get<int>(), 0);
+  const RunResult thin = run({"volume", tmp.path("p.stl"), "-o", tmp.path("l.msh"), "--layers", "10", "--layer-angle",
+                              "0", "--json"});
+  ASSERT_EQ(thin.code, 0) << thin.err;
+  EXPECT_LT(thin.json()["dihedral_deg"]["min_layer"].get<double>(), 5.0);
+  EXPECT_NEAR(thin.json()["boundary_layer"]["thickness_over_radius_max"].get<double>(), 0.1, 0.01);
+  const RunResult grown = run({"volume", tmp.path("p.stl"), "-o", tmp.path("l.msh"), "--layers", "10", "--json"});
+  ASSERT_EQ(grown.code, 0) << grown.err;
+  EXPECT_GE(grown.json()["dihedral_deg"]["min_layer"].get<double>(), 5.0);
+  EXPECT_GT(grown.json()["thicken"]["wall_points"].get<int>(), 0);
+  EXPECT_GT(grown.json()["thicken"]["most_fraction"].get<double>(), 1.2);
+  EXPECT_EQ(grown.json()["thicken"]["under_angle_prisms"].get<int>(), 0);
+  EXPECT_GT(grown.json()["boundary_layer"]["thickness_over_radius_max"].get<double>(), 0.12);
+  std::filesystem::remove(tmp.path("l.msh"));
   ASSERT_EQ(run({"synth", "sphere", "--radius", "3", "-o", tmp.path("s.stl")}).code, 0);
   const RunResult closed = run({"volume", tmp.path("s.stl"), "-o", tmp.path("x.msh")});
   EXPECT_EQ(closed.code, 2);

@@ -55,6 +55,7 @@ factor = 1.5
 [volume]
 layers = 2
 thickness_ratio = 0.15
+layer_angle = 5
 algorithm = "hxt"
 end_names = ["in", "a", "b"]
 [post]
@@ -80,6 +81,7 @@ point = [0, 3, 0]
   EXPECT_DOUBLE_EQ(c.factor, 1.5);
   EXPECT_EQ(c.layers, 2);
   EXPECT_DOUBLE_EQ(c.thickness_ratio, 0.15);
+  EXPECT_DOUBLE_EQ(c.layer_angle, 5.0);
   EXPECT_EQ(c.algorithm, "hxt");
   EXPECT_EQ(c.end_names, (std::vector<std::string>{"in", "a", "b"}));
   ASSERT_TRUE(c.time.has_value());
@@ -108,6 +110,8 @@ TEST(StudyFile, NamesTheKeyOfEveryMistake) {
   EXPECT_NE(error(study_text("meshes = [\"fine\"]\n" + ring)).find("meshes:"), std::string::npos);
   EXPECT_NE(error(study_text("[reference]\nfactor = 1.0\n" + ring)).find("reference.factor"), std::string::npos);
   EXPECT_NE(error(study_text("[volume]\nalgorithm = \"magic\"\n" + ring)).find("volume.algorithm"), std::string::npos);
+  EXPECT_NE(error(study_text("[volume]\nlayer_angle = 45\n" + ring)).find("volume.layer_angle"), std::string::npos);
+  EXPECT_DOUBLE_EQ(parse_study(study_text(ring), "s.toml").layer_angle, 0.0);  // the paper's layer by default
   EXPECT_NE(error(study_text("[[ring]]\nname = \"a b\"\npoint = [0, 0, 0]\n")).find("ring[0].name"), std::string::npos);
   EXPECT_NE(error(study_text("[[ring]]\nname = \"r\"\npoint = [0, 0]\n")).find("ring[0].point: expected three"),
             std::string::npos);
