@@ -193,7 +193,8 @@ Command add_volume_command(CLI::App& parent) {
                                  {"least_after_deg", round_to(r.slivers.least_after, 4)},
                                  {"flips", r.slivers.flips},
                                  {"moves", r.slivers.moves},
-                                 {"insertions", r.slivers.insertions}};
+                                 {"insertions", r.slivers.insertions},
+                                 {"collapses", r.slivers.collapses}};
               json["shrink"] = {{"wall_points", r.shrunk_vertices},
                                 {"least_fraction", round_to(r.least_fraction, 4)},
                                 {"least_at", to_json(r.least_at)}};

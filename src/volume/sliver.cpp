@@ -1,6 +1,7 @@
 #include "volume/sliver.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <initializer_list>
 #include <limits>
@@ -303,6 +304,53 @@ bool try_edge_split(Mesh& m, int c, int d) {
   return try_star(m, ring, fresh);
 }
 
+// Removes free point v by moving it onto a neighbour w (edge collapse): the tetrahedra around
+// v become those joining w to the faces of v's ball away from w, the neighbour that makes the
+// least angle largest; kept if it rises. The ball must be closed (v inside the mesh) and
+// every new tetrahedron positive, so that they fill the ball exactly. v is left out of every
+// tetrahedron (remove_slivers drops such points at the end).
+bool try_collapse(Mesh& m, int v) {
+  const std::vector<int> ball = m.ball(v);
+  // Closed: each face through v is shared by two tetrahedra of the ball.
+  std::vector<std::array<int, 3>> faces;
+  std::vector<int> neighbours;
+  for (int t : ball) {
+    const Tet& tt = m.tet(t);
+    for (int c = 0; c < 4; ++c) {
+      if (tt[c] == v) continue;
+      neighbours.push_back(tt[c]);
+      std::array<int, 3> f{};
+      int k = 0;
+      for (int i = 0; i < 4; ++i)
+        if (i != c) f[k++] = tt[i];
+      std::sort(f.begin(), f.end());
+      faces.push_back(f);
+    }
+  }
+  std::sort(faces.begin(), faces.end());
+  for (size_t i = 0; i < faces.size(); i += 2)
+    if (i + 1 >= faces.size() || faces[i] != faces[i + 1]) return false;
+  std::sort(neighbours.begin(), neighbours.end());
+  neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
+  const double before = least_of(m, ball);
+  double best = before;
+  std::vector<Tet> chosen;
+  for (int w : neighbours) {
+    std::vector<Tet> fresh;
+    for (int t : ball) {
+      Tet n = m.tet(t);
+      if (std::find(n.begin(), n.end(), w) != n.end()) continue;
+      std::replace(n.begin(), n.end(), v, w);
+      fresh.push_back(n);
+    }
+    const double q = least_of(m, fresh);
+    if (q > best) best = q, chosen = std::move(fresh);
+  }
+  if (chosen.empty()) return false;
+  m.replace(ball, chosen);
+  return true;
+}
+
 // Inserts a point at the centroid of t, joined to the boundary of the cavity made of t and
 // its face neighbours, then smoothed; kept if the least angle rises.
 bool try_insert(Mesh& m, int t) {
@@ -388,8 +436,10 @@ SliverReport remove_slivers(std::vector<Vec3>& points, std::vector<Tet>& tets, i
   census(report.below_before, report.least_before, &candidates);
   auto bad = [&](int t) { return m.alive(t) && m.dihedral(t) < options.min_dihedral_deg; };
   static const int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  auto operations = [&] { return report.flips + report.moves + report.insertions + report.collapses; };
   for (int pass = 0; pass < options.passes && !candidates.empty(); ++pass) {
     m.take_touched();
+    const int done_before = operations();
     for (int t : candidates) {
       if (!bad(t)) continue;
       bool done = false;
@@ -403,6 +453,11 @@ SliverReport remove_slivers(std::vector<Vec3>& points, std::vector<Tet>& tets, i
           if (v >= first_free && try_smooth(m, v)) ++report.moves;
         done = !bad(t);
       }
+      if (!done) {
+        const Tet corners = m.tet(t);
+        for (int c = 0; c < 4 && !done; ++c)
+          if (corners[c] >= first_free && try_collapse(m, corners[c])) ++report.collapses, done = true;
+      }
       for (int e = 0; e < 6 && !done; ++e)
         if (try_edge_split(m, m.tet(t)[kEdges[e][0]], m.tet(t)[kEdges[e][1]])) ++report.insertions, done = true;
       if (!done && try_insert(m, t)) ++report.insertions;
@@ -415,8 +470,26 @@ SliverReport remove_slivers(std::vector<Vec3>& points, std::vector<Tet>& tets, i
     candidates.clear();
     for (int t : next)
       if (bad(t)) candidates.push_back(t);
+    if (operations() == done_before) break;  // nothing more changes
   }
   m.compact();
+  // Points removed by collapses: dropped, the others renumbered (those below first_free keep
+  // their indices).
+  std::vector<int> index(points.size(), -1);
+  for (const Tet& t : tets)
+    for (int v : t) index[v] = 0;
+  int next_index = first_free;
+  for (int v = 0; v < static_cast<int>(points.size()); ++v) {
+    if (v < first_free) {
+      index[v] = v;
+    } else if (index[v] == 0) {
+      points[next_index] = points[v];
+      index[v] = next_index++;
+    }
+  }
+  points.resize(next_index);
+  for (Tet& t : tets)
+    for (int& v : t) v = index[v];
   census(report.below_after, report.least_after, nullptr);
   return report;
 }

@@ -8,6 +8,7 @@
 //    corners) and 3-2 (an edge with three tetrahedra around it replaced by a face);
 //  - smoothing: a free corner moved (compass search) to where the least dihedral angle of the
 //    tetrahedra around it is largest;
+//  - collapse: a free corner removed, moved onto the neighbour that leaves its ball best;
 //  - insertion: a new point at the sliver's centroid, joined to the faces of the cavity of the
 //    tetrahedra it sees (the sliver and those across its faces), then smoothed.
 // An operation is kept only when the least dihedral angle of the tetrahedra it replaces or
@@ -25,17 +26,18 @@ namespace vesselmesh::volume {
 
 struct SliverOptions {
   double min_dihedral_deg = 10.0;  // the goal: tetrahedra under it are worked on
-  int passes = 8;                  // over the tetrahedra still under the goal
+  int passes = 40;                 // over the tetrahedra still under the goal (until nothing changes)
 };
 
 struct SliverReport {
   int below_before = 0, below_after = 0;        // tetrahedra under the goal
   double least_before = 0.0, least_after = 0.0;  // degrees; over all tetrahedra
-  int flips = 0, moves = 0, insertions = 0;
+  int flips = 0, moves = 0, insertions = 0, collapses = 0;
   Vec3 worst_at = Vec3::Zero();  // centroid of the worst tetrahedron left
 };
 
-// `tets` positive; points from `first_free` on may move, points may be added.
+// `tets` positive; points from `first_free` on may move or go (the others renumbered), points
+// may be added.
 SliverReport remove_slivers(std::vector<Vec3>& points, std::vector<Tet>& tets, int first_free,
                             const SliverOptions& options = {});
 

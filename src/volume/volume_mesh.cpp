@@ -263,8 +263,9 @@ VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::Op
     reporter.progress("removing slivers", 1.0);
     const SliverReport& s = report.slivers;
     reporter.info(fmt::format("interior: {} tetrahedra under {:g} degrees before the clean-up, {} after ({} flips, {} "
-                              "moves, {} insertions); least dihedral angle {:.2f} -> {:.2f} degrees",
+                              "moves, {} insertions, {} collapses); least dihedral angle {:.2f} -> {:.2f} degrees",
                               s.below_before, options.sliver_angle_deg, s.below_after, s.flips, s.moves, s.insertions,
+                              s.collapses,
                               s.least_before, s.least_after));
     if (s.below_after > 0)
       reporter.warning(fmt::format("{} interior tetrahedra keep a dihedral angle under {:g} degrees (the least, {:.2f}, "

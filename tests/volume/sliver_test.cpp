@@ -97,6 +97,34 @@ TEST(Slivers, BoundarySliverUnderATentIsFlippedAway) {
 
 // A good fill of a ball, spoiled: inside points pushed almost onto a face of their ball makes
 // slivers, which the clean-up must remove with the surface kept.
+TEST(Slivers, AnInsidePointNoPlaceSuitsIsCollapsed) {
+  // A flat tetrahedron (base of side 1, apex 0.08 above its centre: least angle
+  // atan(0.08 / 0.2887) = 15.5 degrees) split in four at a free point p. Wherever p goes, one of
+  // the four is under 10 degrees (the one on the base needs p 0.051 up, where the three against
+  // the apex's faces flatten); no flip applies (every edge of p has three tetrahedra whose ring
+  // is the far face). The cure is to remove p: one tetrahedron again, p dropped.
+  const double s3 = std::sqrt(3.0);
+  std::vector<Vec3> points = {{0, 0, 0}, {1, 0, 0}, {0.5, s3 / 2, 0}, {0.5, s3 / 6, 0.08}, {0.5, s3 / 6, 0.04}};
+  const Tet whole = {0, 1, 2, 3};
+  ASSERT_GT(mesh::tet_volume6(points[0], points[1], points[2], points[3]), 0.0);
+  std::vector<Tet> tets;
+  for (int c = 0; c < 4; ++c) {
+    Tet t = whole;
+    t[c] = 4;
+    tets.push_back(t);
+  }
+  const auto points_before = points;
+  const auto tets_before = tets;
+  const SliverReport r = remove_slivers(points, tets, 4);
+  EXPECT_GT(r.below_before, 0);
+  EXPECT_EQ(r.collapses, 1);
+  ASSERT_EQ(points.size(), 4u);
+  ASSERT_EQ(tets.size(), 1u);
+  expect_kept(points_before, tets_before, points, tets, 4);
+  EXPECT_NEAR(r.least_after, std::atan(0.08 / (s3 / 6)) * 180.0 / std::numbers::pi, 1e-6);
+  EXPECT_EQ(r.below_after, 0);
+}
+
 TEST(Slivers, SpoiledFillIsRepaired) {
   const TriMesh sphere = synth::sphere({.radius = 2.0, .resolution = 0.4, .jitter = 0.2});
   FillResult fill = fill_tetrahedra(sphere.points, sphere.triangles, FillAlgorithm::tetgen);
