@@ -279,9 +279,12 @@ bool try_star(Mesh& m, const std::vector<int>& cavity, const std::vector<Tet>& f
   m.replace(cavity, fresh);
   try_smooth(m, p);
   if (ball_quality(m, p, m.point(p)) > before) return true;
-  std::vector<int> made = m.ball(p);  // undo: the cavity back in its slots
-  std::sort(made.begin(), made.end());
-  m.replace(made, original);
+  // Undo: every tetrahedron of the cavity back in its own slot (the cavity's slots first, in its
+  // order), the slots added for the new ones freed.
+  std::vector<int> slots = cavity;
+  for (int u : m.ball(p))
+    if (std::find(cavity.begin(), cavity.end(), u) == cavity.end()) slots.push_back(u);
+  m.replace(slots, original);
   m.remove_last_point();
   return false;
 }
@@ -351,18 +354,11 @@ bool try_collapse(Mesh& m, int v) {
   return true;
 }
 
-// Inserts a point at the centroid of t, joined to the boundary of the cavity made of t and
-// its face neighbours, then smoothed; kept if the least angle rises.
-bool try_insert(Mesh& m, int t) {
-  const Tet tt = m.tet(t);
-  std::vector<int> cavity = {t};
-  for (int c = 0; c < 4; ++c) {
-    const std::vector<int> shared = m.holding({tt[kFaceOpposite[c][0]], tt[kFaceOpposite[c][1]], tt[kFaceOpposite[c][2]]});
-    for (int u : shared)
-      if (u != t) cavity.push_back(u);
-  }
-  // Faces of the cavity used once: each becomes a tetrahedron with the new point in place of
-  // the corner across it.
+// Inserts a point at `at`, joined to the faces of `cavity` used once (each becomes a tetrahedron
+// with the new point in place of the corner across it), then smoothed; kept if the least angle
+// rises (try_star). Refused when a corner of the cavity is on none of those faces: it would be
+// left out of the mesh.
+bool try_insert(Mesh& m, const std::vector<int>& cavity, const Vec3& at) {
   struct Face {
     std::array<int, 3> sorted;
     int tet, corner;
@@ -378,9 +374,7 @@ bool try_insert(Mesh& m, int t) {
       faces.push_back({f, u, c});
     }
   std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.sorted < b.sorted; });
-  Vec3 centroid = Vec3::Zero();
-  for (int v : tt) centroid += 0.25 * m.point(v);
-  const int p = m.add_point(centroid);
+  const int p = m.add_point(at);
   std::vector<Tet> fresh;
   for (size_t i = 0; i < faces.size(); ++i) {
     const bool twice = (i + 1 < faces.size() && faces[i + 1].sorted == faces[i].sorted) ||
@@ -390,7 +384,6 @@ bool try_insert(Mesh& m, int t) {
     n[faces[i].corner] = p;
     fresh.push_back(n);
   }
-  // A corner of the cavity on none of its boundary faces would be left out of the mesh.
   std::vector<int> kept, corners;
   for (const Tet& n : fresh) kept.insert(kept.end(), n.begin(), n.end());
   for (int u : cavity) corners.insert(corners.end(), m.tet(u).begin(), m.tet(u).end());
@@ -401,6 +394,58 @@ bool try_insert(Mesh& m, int t) {
       return false;
     }
   return try_star(m, cavity, fresh);
+}
+
+// A point at the centroid of t, in the cavity of t and its face neighbours.
+bool try_insert_centroid(Mesh& m, int t) {
+  const Tet tt = m.tet(t);
+  std::vector<int> cavity = {t};
+  for (int c = 0; c < 4; ++c) {
+    const std::vector<int> shared = m.holding({tt[kFaceOpposite[c][0]], tt[kFaceOpposite[c][1]], tt[kFaceOpposite[c][2]]});
+    for (int u : shared)
+      if (u != t) cavity.push_back(u);
+  }
+  Vec3 centroid = Vec3::Zero();
+  for (int v : tt) centroid += 0.25 * m.point(v);
+  return try_insert(m, cavity, centroid);
+}
+
+// True if p is inside the circumsphere of tetrahedron t.
+bool in_circumsphere(const Mesh& m, int t, const Vec3& p) {
+  const Vec3& a = m.point(m.tet(t)[0]);
+  const Vec3 b = m.point(m.tet(t)[1]) - a, c = m.point(m.tet(t)[2]) - a, d = m.point(m.tet(t)[3]) - a;
+  const double det = 2.0 * b.dot(c.cross(d));
+  if (!(std::abs(det) > 0.0)) return false;
+  const Vec3 centre = (b.squaredNorm() * c.cross(d) + c.squaredNorm() * d.cross(b) + d.squaredNorm() * b.cross(c)) / det;
+  return (p - a - centre).squaredNorm() < centre.squaredNorm();
+}
+
+// A sliver standing on the boundary (a face of it used once) whose far corner cannot move away
+// from that face: a point where a fair tetrahedron on the face would have its apex (over the
+// face's centroid, at 1, 0.7 or 0.45 of a regular one's height), in the cavity of the
+// tetrahedra whose circumspheres hold it, grown from t across faces (Bowyer and Watson).
+bool try_insert_over_boundary(Mesh& m, int t) {
+  for (int c = 0; c < 4; ++c) {
+    const Tet tt = m.tet(t);
+    const int f[3] = {tt[kFaceOpposite[c][0]], tt[kFaceOpposite[c][1]], tt[kFaceOpposite[c][2]]};
+    if (m.holding({f[0], f[1], f[2]}).size() != 1) continue;
+    const Vec3 &a = m.point(f[0]), &b = m.point(f[1]), &d = m.point(f[2]);
+    const Vec3 normal = (b - a).cross(d - a).normalized();  // toward t[c]: (face, t[c]) is positive
+    const double edge = ((b - a).norm() + (d - b).norm() + (a - d).norm()) / 3.0;
+    for (double height : {1.0, 0.7, 0.45}) {
+      const Vec3 apex = (a + b + d) / 3.0 + height * std::sqrt(2.0 / 3.0) * edge * normal;
+      std::vector<int> cavity = {t};
+      for (size_t i = 0; i < cavity.size() && cavity.size() < 64; ++i) {
+        const Tet u = m.tet(cavity[i]);
+        for (int k = 0; k < 4; ++k)
+          for (int w : m.holding({u[kFaceOpposite[k][0]], u[kFaceOpposite[k][1]], u[kFaceOpposite[k][2]]}))
+            if (std::find(cavity.begin(), cavity.end(), w) == cavity.end() && in_circumsphere(m, w, apex))
+              cavity.push_back(w);
+      }
+      if (try_insert(m, cavity, apex)) return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace
@@ -460,7 +505,28 @@ SliverReport remove_slivers(std::vector<Vec3>& points, std::vector<Tet>& tets, i
       }
       for (int e = 0; e < 6 && !done; ++e)
         if (try_edge_split(m, m.tet(t)[kEdges[e][0]], m.tet(t)[kEdges[e][1]])) ++report.insertions, done = true;
-      if (!done && try_insert(m, t)) ++report.insertions;
+      if (!done && try_insert_centroid(m, t)) ++report.insertions, done = true;
+      if (!done && try_insert_over_boundary(m, t)) ++report.insertions, done = true;
+      // Stuck: flips and moves on the tetrahedra across its faces (each kept only if it raises
+      // their own least angle) change what t's operations see in the next pass.
+      if (!done) {
+        const Tet tt = m.tet(t);
+        std::vector<int> around;
+        for (int c = 0; c < 4; ++c)
+          for (int u : m.holding({tt[kFaceOpposite[c][0]], tt[kFaceOpposite[c][1]], tt[kFaceOpposite[c][2]]}))
+            if (u != t) around.push_back(u);
+        for (int u : around) {
+          if (!m.alive(u)) continue;  // gone with an operation on an earlier one
+          bool changed = false;
+          for (int c = 0; c < 4 && !changed; ++c)
+            if (try_flip23(m, u, c)) ++report.flips, changed = true;
+          for (int e = 0; e < 6 && !changed; ++e)
+            if (try_edge_removal(m, m.tet(u)[kEdges[e][0]], m.tet(u)[kEdges[e][1]])) ++report.flips, changed = true;
+          if (!changed)
+            for (int v : m.tet(u))
+              if (v >= first_free && try_smooth(m, v)) ++report.moves;
+        }
+      }
     }
     // Next pass: what is still under the goal among the tetrahedra worked on or touched.
     std::vector<int> next = m.take_touched();
