@@ -10,7 +10,12 @@
 //    tetrahedra around it is largest;
 //  - collapse: a free corner removed, moved onto the neighbour that leaves its ball best;
 //  - insertion: a new point at the sliver's centroid, joined to the faces of the cavity of the
-//    tetrahedra it sees (the sliver and those across its faces), then smoothed.
+//    tetrahedra it sees (the sliver and those across its faces), then smoothed; for a sliver
+//    standing on the boundary, a point at the apex of a fair tetrahedron on that face, in the
+//    cavity of the tetrahedra whose circumspheres hold it (Bowyer-Watson);
+//  - when nothing cures a sliver, flips and moves on the tetrahedra across its faces (each kept
+//    only if it raises their own least angle), so that the next pass sees it anew.
+// Passes over what is still under the goal run until nothing changes.
 // An operation is kept only when the least dihedral angle of the tetrahedra it replaces or
 // moves rises, so the worst angle of the mesh never falls and no tetrahedron is inverted.
 // Boundary faces (faces of one tetrahedron) are never changed and points below `first_free`
