@@ -83,8 +83,8 @@ Command add_volume_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand(
       "volume",
       "Builds the volume mesh of the lumen: --layers prism layers extruded inward from the wall (total thickness "
-      "--thickness-ratio x the local radius from the distance map, shrunk smoothly where columns would cross, and "
-      "reported), each prism cut into three tetrahedra; a planar quality cap on each end; Gmsh's tetrahedra inside. "
+      "--thickness-ratio x the local radius from the distance map, shrunk smoothly where columns would cross, grown "
+      "where the wall's triangles are too wide for --layer-angle, and reported), each prism cut into three tetrahedra; a planar quality cap on each end; Gmsh's tetrahedra inside. "
       "Boundary tags: wall, inlet (the largest end unless --inlet), outlet_1, ... in the order of 'vesselmesh info'. "
       "Give a remeshed surface (vesselmesh remesh): the layer stands on its triangles");
   struct Options {
