@@ -189,13 +189,19 @@ BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double
       d = turned.normalized();
     }
   };
-  // The least dihedral angle (degrees) of the tetrahedra of wall triangle f's prism at level k.
-  auto prism_angle = [&](const Triangle& f, int k) {
-    double least = 180.0;
-    for (const Tet& t : mesh::split_prism(level_prism(f, k)))
-      least = std::min(least, mesh::least_dihedral_angle(out.points[t[0]], out.points[t[1]], out.points[t[2]],
-                                                         out.points[t[3]]) * 180.0 / std::numbers::pi);
-    return least;
+  // Per prism, wall triangle by wall triangle and level by level (the order of out.prisms): the
+  // least dihedral angle (degrees) of its tetrahedra, as the layer stands.
+  const int layers = levels - 1;
+  std::vector<double> angle(wall.triangles.size() * layers);
+  auto measure_angles = [&] {
+    for (size_t t = 0; t < wall.triangles.size(); ++t)
+      for (int k = 0; k < layers; ++k) {
+        double least = 180.0;
+        for (const Tet& c : mesh::split_prism(level_prism(wall.triangles[t], k)))
+          least = std::min(least, mesh::least_dihedral_angle(out.points[c[0]], out.points[c[1]], out.points[c[2]],
+                                                             out.points[c[3]]) * 180.0 / std::numbers::pi);
+        angle[t * layers + k] = least;
+      }
   };
   std::vector<char> bad(n, 0);
   constexpr int kMaxRounds = 60, kAnglePasses = 4;
@@ -267,15 +273,16 @@ BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double
       reporter.info(fmt::format("boundary layer: round {}: {} folding places, {} crossing pairs; shrinking there",
                                 round + 1, local_failures, crossings));
     }
+    measure_angles();
     // Prisms still under the angle where nothing held their columns down (no shrink, no cap at
     // half the radius): the floor's estimate fell short (inner levels widen where the wall is
     // concave; leaning columns). Raise those floors by what the angle missed and build again.
     if (!(options.min_angle_deg > 0.0) || pass + 1 == kAnglePasses) break;
     const double wanted = std::tan(options.min_angle_deg * std::numbers::pi / 180.0);
     bool raised = false;
-    for (const Triangle& f : wall.triangles) {
-      double least = 180.0;
-      for (int k = 0; k + 1 < levels; ++k) least = std::min(least, prism_angle(f, k));
+    for (size_t t = 0; t < wall.triangles.size(); ++t) {
+      const Triangle& f = wall.triangles[t];
+      const double least = *std::min_element(angle.begin() + t * layers, angle.begin() + (t + 1) * layers);
       if (least >= options.min_angle_deg) continue;
       const double factor = wanted / std::tan(std::max(least, 0.5) * std::numbers::pi / 180.0);
       for (int v : f) {
@@ -305,12 +312,11 @@ BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double
     if (kept > 1.001) ++out.thickened_vertices;
     if (kept > out.most_fraction) out.most_fraction = kept, out.most_at = wall.points[v];
   }
-  for (const Triangle& f : wall.triangles)
-    for (int k = 0; k + 1 < levels; ++k) {
-      const double least = prism_angle(f, k);
-      if (least < out.least_angle) out.least_angle = least, out.least_angle_at = wall.points[f[0]];
-      if (options.min_angle_deg > 0.0 && least < options.min_angle_deg) ++out.under_angle_prisms;
-    }
+  for (size_t p = 0; p < angle.size(); ++p) {
+    if (angle[p] < out.least_angle)
+      out.least_angle = angle[p], out.least_angle_at = wall.points[wall.triangles[p / layers][0]];
+    if (options.min_angle_deg > 0.0 && angle[p] < options.min_angle_deg) ++out.under_angle_prisms;
+  }
   return out;
 }
 

@@ -16,6 +16,13 @@ constexpr double kFlat = -1.0;  // the quality of a flat or inverted tetrahedron
 // The face opposite corner c of a positive tetrahedron t, ordered so that (face, t[c]) is positive.
 constexpr int kFaceOpposite[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
 
+// The corners of t's face opposite corner c, in increasing order (a key for that face).
+std::array<int, 3> sorted_face(const Tet& t, int c) {
+  std::array<int, 3> f = {t[kFaceOpposite[c][0]], t[kFaceOpposite[c][1]], t[kFaceOpposite[c][2]]};
+  std::sort(f.begin(), f.end());
+  return f;
+}
+
 // What an operation must raise: the least dihedral angle (degrees), capped by 60 x the
 // volume-length measure 6 sqrt(2) V / l_rms^3 (1 for the regular tetrahedron, 0 for a flat
 // one), so that a sliver is never traded for a needle or a cap: those keep fair dihedral angles
@@ -62,6 +69,15 @@ class Mesh {
       for (int v : corners) all = all && std::find(tets_[t].begin(), tets_[t].end(), v) != tets_[t].end();
       if (all) out.push_back(t);
     }
+    return out;
+  }
+
+  // The live tetrahedra other than t holding t's face opposite corner c: one inside, none on
+  // the boundary.
+  std::vector<int> across(int t, int c) const {
+    const Tet& tt = tets_[t];
+    std::vector<int> out = holding({tt[kFaceOpposite[c][0]], tt[kFaceOpposite[c][1]], tt[kFaceOpposite[c][2]]});
+    std::erase(out, t);
     return out;
   }
 
@@ -141,9 +157,9 @@ bool try_flip23(Mesh& m, int t, int c) {
   // (a, b, c) with d on its positive side: a positive tetrahedron (a, b, c, d) is tt with d last.
   int face[3], k = 0;
   for (int i : kFaceOpposite[c]) face[k++] = tt[i];
-  std::vector<int> shared = m.holding({face[0], face[1], face[2]});
-  if (shared.size() != 2) return false;  // a boundary face
-  const int u = shared[0] == t ? shared[1] : shared[0];
+  const std::vector<int> other = m.across(t, c);
+  if (other.size() != 1) return false;  // a boundary face
+  const int u = other[0];
   int e = -1;
   for (int v : m.tet(u))
     if (v != face[0] && v != face[1] && v != face[2]) e = v;
@@ -322,12 +338,7 @@ bool try_collapse(Mesh& m, int v) {
     for (int c = 0; c < 4; ++c) {
       if (tt[c] == v) continue;
       neighbours.push_back(tt[c]);
-      std::array<int, 3> f{};
-      int k = 0;
-      for (int i = 0; i < 4; ++i)
-        if (i != c) f[k++] = tt[i];
-      std::sort(f.begin(), f.end());
-      faces.push_back(f);
+      faces.push_back(sorted_face(tt, c));
     }
   }
   std::sort(faces.begin(), faces.end());
@@ -365,14 +376,7 @@ bool try_insert(Mesh& m, const std::vector<int>& cavity, const Vec3& at) {
   };
   std::vector<Face> faces;
   for (int u : cavity)
-    for (int c = 0; c < 4; ++c) {
-      std::array<int, 3> f{};
-      int k = 0;
-      for (int i = 0; i < 4; ++i)
-        if (i != c) f[k++] = m.tet(u)[i];
-      std::sort(f.begin(), f.end());
-      faces.push_back({f, u, c});
-    }
+    for (int c = 0; c < 4; ++c) faces.push_back({sorted_face(m.tet(u), c), u, c});
   std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.sorted < b.sorted; });
   const int p = m.add_point(at);
   std::vector<Tet> fresh;
@@ -400,11 +404,8 @@ bool try_insert(Mesh& m, const std::vector<int>& cavity, const Vec3& at) {
 bool try_insert_centroid(Mesh& m, int t) {
   const Tet tt = m.tet(t);
   std::vector<int> cavity = {t};
-  for (int c = 0; c < 4; ++c) {
-    const std::vector<int> shared = m.holding({tt[kFaceOpposite[c][0]], tt[kFaceOpposite[c][1]], tt[kFaceOpposite[c][2]]});
-    for (int u : shared)
-      if (u != t) cavity.push_back(u);
-  }
+  for (int c = 0; c < 4; ++c)
+    for (int u : m.across(t, c)) cavity.push_back(u);
   Vec3 centroid = Vec3::Zero();
   for (int v : tt) centroid += 0.25 * m.point(v);
   return try_insert(m, cavity, centroid);
@@ -427,8 +428,8 @@ bool in_circumsphere(const Mesh& m, int t, const Vec3& p) {
 bool try_insert_over_boundary(Mesh& m, int t) {
   for (int c = 0; c < 4; ++c) {
     const Tet tt = m.tet(t);
+    if (!m.across(t, c).empty()) continue;
     const int f[3] = {tt[kFaceOpposite[c][0]], tt[kFaceOpposite[c][1]], tt[kFaceOpposite[c][2]]};
-    if (m.holding({f[0], f[1], f[2]}).size() != 1) continue;
     const Vec3 &a = m.point(f[0]), &b = m.point(f[1]), &d = m.point(f[2]);
     const Vec3 normal = (b - a).cross(d - a).normalized();  // toward t[c]: (face, t[c]) is positive
     const double edge = ((b - a).norm() + (d - b).norm() + (a - d).norm()) / 3.0;
@@ -436,9 +437,8 @@ bool try_insert_over_boundary(Mesh& m, int t) {
       const Vec3 apex = (a + b + d) / 3.0 + height * std::sqrt(2.0 / 3.0) * edge * normal;
       std::vector<int> cavity = {t};
       for (size_t i = 0; i < cavity.size() && cavity.size() < 64; ++i) {
-        const Tet u = m.tet(cavity[i]);
         for (int k = 0; k < 4; ++k)
-          for (int w : m.holding({u[kFaceOpposite[k][0]], u[kFaceOpposite[k][1]], u[kFaceOpposite[k][2]]}))
+          for (int w : m.across(cavity[i], k))
             if (std::find(cavity.begin(), cavity.end(), w) == cavity.end() && in_circumsphere(m, w, apex))
               cavity.push_back(w);
       }
@@ -482,20 +482,28 @@ SliverReport remove_slivers(std::vector<Vec3>& points, std::vector<Tet>& tets, i
   auto bad = [&](int t) { return m.alive(t) && m.dihedral(t) < options.min_dihedral_deg; };
   static const int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   auto operations = [&] { return report.flips + report.moves + report.insertions + report.collapses; };
+  // Flips that raise the least angle of u's neighbourhood: 2-3 across its faces, edge removal
+  // around its edges. Moves of u's free corners.
+  auto flip = [&](int u) {
+    for (int c = 0; c < 4; ++c)
+      if (try_flip23(m, u, c)) return ++report.flips, true;
+    for (int e = 0; e < 6; ++e)
+      if (try_edge_removal(m, m.tet(u)[kEdges[e][0]], m.tet(u)[kEdges[e][1]])) return ++report.flips, true;
+    return false;
+  };
+  auto smooth_corners = [&](int u) {
+    const Tet corners = m.tet(u);
+    for (int v : corners)
+      if (v >= first_free && try_smooth(m, v)) ++report.moves;
+  };
   for (int pass = 0; pass < options.passes && !candidates.empty(); ++pass) {
     m.take_touched();
     const int done_before = operations();
     for (int t : candidates) {
       if (!bad(t)) continue;
-      bool done = false;
-      for (int c = 0; c < 4 && !done; ++c)
-        if (try_flip23(m, t, c)) ++report.flips, done = true;
-      for (int e = 0; e < 6 && !done; ++e)
-        if (try_edge_removal(m, m.tet(t)[kEdges[e][0]], m.tet(t)[kEdges[e][1]])) ++report.flips, done = true;
+      bool done = flip(t);
       if (!done) {
-        const Tet corners = m.tet(t);
-        for (int v : corners)
-          if (v >= first_free && try_smooth(m, v)) ++report.moves;
+        smooth_corners(t);
         done = !bad(t);
       }
       if (!done) {
@@ -510,22 +518,11 @@ SliverReport remove_slivers(std::vector<Vec3>& points, std::vector<Tet>& tets, i
       // Stuck: flips and moves on the tetrahedra across its faces (each kept only if it raises
       // their own least angle) change what t's operations see in the next pass.
       if (!done) {
-        const Tet tt = m.tet(t);
         std::vector<int> around;
         for (int c = 0; c < 4; ++c)
-          for (int u : m.holding({tt[kFaceOpposite[c][0]], tt[kFaceOpposite[c][1]], tt[kFaceOpposite[c][2]]}))
-            if (u != t) around.push_back(u);
-        for (int u : around) {
-          if (!m.alive(u)) continue;  // gone with an operation on an earlier one
-          bool changed = false;
-          for (int c = 0; c < 4 && !changed; ++c)
-            if (try_flip23(m, u, c)) ++report.flips, changed = true;
-          for (int e = 0; e < 6 && !changed; ++e)
-            if (try_edge_removal(m, m.tet(u)[kEdges[e][0]], m.tet(u)[kEdges[e][1]])) ++report.flips, changed = true;
-          if (!changed)
-            for (int v : m.tet(u))
-              if (v >= first_free && try_smooth(m, v)) ++report.moves;
-        }
+          for (int u : m.across(t, c)) around.push_back(u);
+        for (int u : around)
+          if (m.alive(u) && !flip(u)) smooth_corners(u);  // alive: not gone with an earlier one's flip
       }
     }
     // Next pass: what is still under the goal among the tetrahedra worked on or touched.
@@ -541,14 +538,15 @@ SliverReport remove_slivers(std::vector<Vec3>& points, std::vector<Tet>& tets, i
   m.compact();
   // Points removed by collapses: dropped, the others renumbered (those below first_free keep
   // their indices).
-  std::vector<int> index(points.size(), -1);
+  std::vector<char> used(points.size(), 0);
   for (const Tet& t : tets)
-    for (int v : t) index[v] = 0;
+    for (int v : t) used[v] = 1;
+  std::vector<int> index(points.size(), -1);
   int next_index = first_free;
   for (int v = 0; v < static_cast<int>(points.size()); ++v) {
     if (v < first_free) {
       index[v] = v;
-    } else if (index[v] == 0) {
+    } else if (used[v]) {
       points[next_index] = points[v];
       index[v] = next_index++;
     }
