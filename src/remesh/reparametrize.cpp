@@ -97,22 +97,6 @@ std::string where(const Vec3& p) { return fmt::format("({:.4g}, {:.4g}, {:.4g})"
 
 }  // namespace
 
-GmshAlgorithm parse_gmsh_algorithm(const std::string& name) {
-  if (name == "delaunay") return GmshAlgorithm::delaunay;
-  if (name == "frontal") return GmshAlgorithm::frontal;
-  if (name == "meshadapt") return GmshAlgorithm::meshadapt;
-  throw OptionError(fmt::format("unknown Gmsh algorithm '{}': delaunay, frontal or meshadapt", name));
-}
-
-std::string gmsh_algorithm_name(GmshAlgorithm algorithm) {
-  switch (algorithm) {
-    case GmshAlgorithm::delaunay: return "delaunay";
-    case GmshAlgorithm::frontal: return "frontal";
-    case GmshAlgorithm::meshadapt: return "meshadapt";
-  }
-  return "delaunay";
-}
-
 GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& metrics, const GmshRemeshOptions& o,
                                const Reporter& reporter) {
   if (metrics.size() != input.points.size())

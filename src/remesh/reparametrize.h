@@ -16,6 +16,7 @@
 // and where it is: never a mesh with holes.
 #pragma once
 
+#include "mesh/error.h"
 #include "mesh/reporter.h"
 #include "mesh/trimesh.h"
 #include "remesh/adapt.h"
@@ -27,8 +28,21 @@ namespace vesselmesh::remesh {
 
 enum class GmshAlgorithm { delaunay, frontal, meshadapt };
 
-GmshAlgorithm parse_gmsh_algorithm(const std::string& name);  // OptionError for an unknown name
-std::string gmsh_algorithm_name(GmshAlgorithm algorithm);
+// Inline: the program parses these without opening Gmsh's module (io/gmsh_module.h).
+inline GmshAlgorithm parse_gmsh_algorithm(const std::string& name) {  // OptionError for an unknown name
+  if (name == "delaunay") return GmshAlgorithm::delaunay;
+  if (name == "frontal") return GmshAlgorithm::frontal;
+  if (name == "meshadapt") return GmshAlgorithm::meshadapt;
+  throw OptionError("unknown Gmsh algorithm '" + name + "': delaunay, frontal or meshadapt");
+}
+inline std::string gmsh_algorithm_name(GmshAlgorithm algorithm) {
+  switch (algorithm) {
+    case GmshAlgorithm::delaunay: return "delaunay";
+    case GmshAlgorithm::frontal: return "frontal";
+    case GmshAlgorithm::meshadapt: return "meshadapt";
+  }
+  return "delaunay";
+}
 
 struct GmshRemeshOptions {
   GmshAlgorithm algorithm = GmshAlgorithm::delaunay;

@@ -41,9 +41,9 @@ std::string quote(const std::string& s) {
   return q;
 }
 
-RunResult run(const std::vector<std::string>& args) {
+RunResult run_program(const std::string& program, const std::vector<std::string>& args) {
   test::TemporaryFolder tmp;
-  std::string command = quote(VESSELMESH_PROGRAM);
+  std::string command = quote(program);
   for (const std::string& a : args) command.append(" ").append(quote(a));
   command.append(" >").append(quote(tmp.path("out"))).append(" 2>").append(quote(tmp.path("err"))).append(" </dev/null");
   const int status = std::system(command.c_str());
@@ -59,6 +59,8 @@ RunResult run(const std::vector<std::string>& args) {
   r.err = slurp(tmp.path("err"));
   return r;
 }
+
+RunResult run(const std::vector<std::string>& args) { return run_program(VESSELMESH_PROGRAM, args); }
 
 // The last line of stderr: the error message.
 std::string last_line(const std::string& text) {
@@ -83,6 +85,40 @@ TEST(Cli, UnknownCommandOrOptionExitsWithTwo) {
   EXPECT_EQ(run({"frobnicate"}).code, 2);
   EXPECT_EQ(run({"info", "--no-such-option", "x.stl"}).code, 2);
   EXPECT_EQ(run({}).code, 2);
+}
+
+// Gmsh is a module the program opens when a command needs it (io/gmsh_module.h). A copy of the
+// program without the module beside it runs the commands that do not use Gmsh; one that does
+// fails with exit 2, names the module and writes nothing.
+TEST(Cli, GmshIsOpenedOnlyByTheCommandsThatNeedIt) {
+  test::TemporaryFolder tmp;
+  const std::string alone = tmp.path("vesselmesh");
+  std::filesystem::copy_file(VESSELMESH_PROGRAM, alone);
+  std::filesystem::permissions(alone, std::filesystem::perms::owner_all);
+  ASSERT_FALSE(std::filesystem::exists(tmp.path("libvesselmesh-gmsh.so")));
+  ASSERT_EQ(run({"synth", "cylinder", "-o", tmp.path("pipe.stl"), "--radius", "2", "--length", "8"}).code, 0);
+
+  EXPECT_EQ(run_program(alone, {"info", tmp.path("pipe.stl")}).code, 0);
+  const RunResult remesh =
+      run_program(alone, {"remesh", tmp.path("pipe.stl"), "--size", "uniform", "--target-triangles", "600", "-o",
+                          tmp.path("native.vtp")});
+  EXPECT_EQ(remesh.code, 0) << remesh.err;
+  EXPECT_TRUE(std::filesystem::exists(tmp.path("native.vtp")));
+
+  for (const std::vector<std::string>& needs_gmsh :
+       {std::vector<std::string>{"volume", tmp.path("pipe.stl"), "-o", tmp.path("v.vtu")},
+        std::vector<std::string>{"remesh", tmp.path("pipe.stl"), "--size", "uniform", "--target-triangles", "600",
+                                 "--engine", "gmsh", "-o", tmp.path("g.vtp")},
+        std::vector<std::string>{"remesh", tmp.path("pipe.stl"), "--size", "uniform", "--target-triangles", "600",
+                                 "-o", tmp.path("native.msh")}}) {
+    const RunResult r = run_program(alone, needs_gmsh);
+    EXPECT_EQ(r.code, 2) << needs_gmsh[0];
+    EXPECT_NE(r.err.find("libvesselmesh-gmsh.so"), std::string::npos) << r.err;
+  }
+  for (const char* output : {"v.vtu", "g.vtp", "native.msh"}) EXPECT_FALSE(std::filesystem::exists(tmp.path(output))) << output;
+  // The program in the build folder finds its module.
+  EXPECT_EQ(run({"remesh", tmp.path("pipe.stl"), "--size", "uniform", "--target-triangles", "600", "-o",
+                 tmp.path("native.msh")}).code, 0);
 }
 
 TEST(Cli, SynthThenInfoGivesTheContractKeys) {
