@@ -118,7 +118,8 @@ SurfaceModel::Nearest SurfaceModel::walk(const Vec3& p, int hint) const {
   }
   stamp[hint] = walk_number;
   int visits = 1;
-  std::vector<int> stack = {hint};
+  thread_local std::vector<int> stack;
+  stack.assign(1, hint);
   while (!stack.empty()) {
     const int t = stack.back();
     stack.pop_back();
