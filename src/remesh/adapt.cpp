@@ -53,7 +53,14 @@ class Remesher {
   // Within the distance bound, once the final refinement has enforced it (before, the metric
   // keeps the mesh close, and checking every operation would slow them all).
   bool close_enough(const Triangle& f) const { return !keep_bound_ || !too_far(f); }
-  double worst_quality(const std::vector<int>& triangles) const;
+  // The worst quality of live triangles as they are (cached: see quality_)...
+  double worst_quality(const std::vector<int>& triangles);
+  // ... and as they are now, with a point moved for a trial.
+  double worst_quality_now(const std::vector<int>& triangles) const;
+  double live_quality(int t);
+  void forget_quality(int t) {
+    if (t < static_cast<int>(quality_.size())) quality_[t] = -1.0;
+  }
 
   bool split(int a, int b);
   bool collapse(int a, int b);  // removes a
@@ -83,6 +90,9 @@ class Remesher {
   // Triangles found within the distance bound by the last scan and unchanged since (a corner
   // moved or re-cornered clears the flag; new triangles have none): later scans skip them.
   std::vector<char> within_bound_;
+  // Each live triangle's quality once computed (-1: not yet, or a corner moved, took another
+  // metric or was replaced since).
+  std::vector<double> quality_;
   bool known_within(int t) const { return t < static_cast<int>(within_bound_.size()) && within_bound_[t]; }
   void forget_within(int t) {
     if (t < static_cast<int>(within_bound_.size())) within_bound_[t] = 0;
@@ -128,7 +138,19 @@ Remesher::Stray Remesher::stray(const Triangle& f) const {
   return {d, std::min({bound_[g[0]], bound_[g[1]], bound_[g[2]]})};
 }
 
-double Remesher::worst_quality(const std::vector<int>& triangles) const {
+double Remesher::live_quality(int t) {
+  if (t >= static_cast<int>(quality_.size())) quality_.resize(m_.triangles.size(), -1.0);
+  if (quality_[t] < 0.0) quality_[t] = m_.quality(m_.triangles[t]);
+  return quality_[t];
+}
+
+double Remesher::worst_quality(const std::vector<int>& triangles) {
+  double worst = 1.0;
+  for (int t : triangles) worst = std::min(worst, live_quality(t));
+  return worst;
+}
+
+double Remesher::worst_quality_now(const std::vector<int>& triangles) const {
   double worst = 1.0;
   for (int t : triangles) worst = std::min(worst, m_.quality(m_.triangles[t]));
   return worst;
@@ -204,6 +226,7 @@ bool Remesher::collapse(int a, int b) {
   for (int t : rest) {
     m_.set_corner(t, mesh::corner_of(m_.triangles[t], a), b);
     forget_within(t);
+    forget_quality(t);
   }
   for (int x : na) {
     const int cx = m_.curve_of_edge(a, x);
@@ -218,17 +241,20 @@ bool Remesher::collapse(int a, int b) {
 
 bool Remesher::flip(int a, int b) {
   if (m_.curve_of_edge(a, b) >= 0) return false;
-  const std::vector<int> shared = m_.triangles_of_edge(a, b);
-  if (shared.size() != 2) return false;
+  int shared[2], count = 0;  // the triangles on a-b: exactly two, or no flip
+  for (int t : m_.ball[a])
+    if (mesh::corner_of(m_.triangles[t], b) >= 0 && count++ < 2) shared[count - 1] = t;
+  if (count != 2) return false;
   int t1 = shared[0], t2 = shared[1];
   if (m_.triangles[t1][(mesh::corner_of(m_.triangles[t1], a) + 1) % 3] != b) std::swap(t1, t2);  // t1 runs a -> b
   const Triangle f1 = m_.triangles[t1], f2 = m_.triangles[t2];
   const int c = f1[(mesh::corner_of(f1, a) + 2) % 3], d = f2[(mesh::corner_of(f2, b) + 2) % 3];
-  if (c == d || m_.connected(c, d)) return false;
+  if (c == d) return false;
   const Triangle g1{a, d, c}, g2{d, b, c};
-  const double before = std::min(m_.quality(f1), m_.quality(f2));
+  const double before = std::min(live_quality(t1), live_quality(t2));
   const double after = std::min(m_.quality(g1), m_.quality(g2));
   if (!(after > 1.02 * before + 1e-6)) return false;
+  if (m_.connected(c, d)) return false;  // c-d is an edge already
   const Vec3 pair = face_normal(f1).normalized() + face_normal(f2).normalized();
   if (!valid(g1, pair) || !valid(g2, pair)) return false;
   // Do not fold the surface: the new pair may bend no more than the old one or 20 degrees.
@@ -285,7 +311,7 @@ std::optional<Projection> Remesher::move_target(int v, double before) {
   // Not worth projecting when, even in the tangent plane, the ball would not get better.
   const Vec3 kept = p;
   m_.position[v] = target;
-  const double after = worst_quality(m_.ball[v]);
+  const double after = worst_quality_now(m_.ball[v]);
   m_.position[v] = kept;
   if (!(after > before + kMoveGain)) return std::nullopt;
   return model_.project(target, m_.hint[v]);
@@ -304,7 +330,7 @@ bool Remesher::move(int v) {
   m_.position[v] = target->point;
   m_.metric[v] = target->metric;
   if (m_.kind[v] == PointKind::free) m_.normal[v] = target->normal;
-  bool keep = worst_quality(around) > before + kMoveGain;
+  bool keep = worst_quality_now(around) > before + kMoveGain;
   for (size_t i = 0; i < around.size() && keep; ++i)
     keep = valid(m_.triangles[around[i]], old_normals[i]) && close_enough(m_.triangles[around[i]]);
   if (!keep) {
@@ -316,6 +342,7 @@ bool Remesher::move(int v) {
   if (target->triangle >= 0) m_.hint[v] = target->triangle;
   for (int t : around) {
     forget_within(t);
+    forget_quality(t);
     for (int x : m_.triangles[t]) m_.dirty[x] = 1;  // their triangles changed shape
   }
   ++counts.moves;
@@ -349,7 +376,7 @@ int Remesher::split_pass() {
   std::sort(todo.begin(), todo.end());
   int done = 0;
   for (const auto& [minus_length, e] : todo)
-    if (m_.connected(e[0], e[1]) && m_.edge_length(e[0], e[1]) > kLong) done += split(e[0], e[1]);
+    if (m_.edge_length(e[0], e[1]) > kLong) done += split(e[0], e[1]);  // no longer an edge: split() declines
   return done;
 }
 
@@ -363,7 +390,7 @@ int Remesher::collapse_pass() {
   int done = 0;
   for (const auto& [length, e] : todo) {
     const auto [a, b] = e;
-    if (!m_.point_alive[a] || !m_.point_alive[b] || !m_.connected(a, b) || m_.edge_length(a, b) >= kShort) continue;
+    if (!m_.point_alive[a] || !m_.point_alive[b] || m_.edge_length(a, b) >= kShort) continue;  // collapse() checks the edge
     // Remove the freer point first: a curve point stays rather than a free one moving onto it.
     const bool a_first = static_cast<int>(m_.kind[a]) <= static_cast<int>(m_.kind[b]);
     done += a_first ? (collapse(a, b) || collapse(b, a)) : (collapse(b, a) || collapse(a, b));
@@ -374,7 +401,7 @@ int Remesher::collapse_pass() {
 int Remesher::flip_pass() {
   int done = 0;
   for (const auto& [a, b] : edges())
-    if (m_.connected(a, b)) done += flip(a, b);
+    done += flip(a, b);  // an edge flipped away earlier in the pass has no two triangles: declined
   return done;
 }
 
@@ -489,8 +516,10 @@ int Remesher::tighten_metric() {
     }
     if (m_.metric[v].v == before.v) continue;
     m_.dirty[v] = 1;
-    for (int t : m_.ball[v])
+    for (int t : m_.ball[v]) {
+      forget_quality(t);
       for (int x : m_.triangles[t]) m_.dirty[x] = 1;
+    }
   }
   return count;
 }

@@ -39,14 +39,12 @@ SurfaceModel::SurfaceModel(const TriMesh& input, const std::vector<Sym3>& metric
       features_(std::move(features)) {
   VM_CHECK(metrics.size() == input.points.size(), "one metric per input point");
   VM_CHECK(features_.corner_copy.size() == input.triangles.size(), "features of another surface");
-  sphere_center_.reserve(input.triangles.size());
-  sphere_radius_.reserve(input.triangles.size());
+  spheres_.reserve(input.triangles.size());
   for (int t = 0; t < input.num_triangles(); ++t) {
     const Vec3 c = mesh::triangle_centroid(input, t);
     double r = 0.0;
     for (int v : input.triangles[t]) r = std::max(r, (input.points[v] - c).norm());
-    sphere_center_.push_back(c);
-    sphere_radius_.push_back(r);
+    spheres_.push_back({c, r});
   }
   logs_.reserve(metrics.size());
   for (const Sym3& m : metrics) logs_.push_back(sizing::metric_log(m));
@@ -129,8 +127,9 @@ SurfaceModel::Nearest SurfaceModel::walk(const Vec3& p, int hint) const {
         if (++visits > kMaxVisits) return {Vec3::Zero(), -1};
         stamp[u] = walk_number;
         // No point of u is nearer than its sphere allows: skip it when that is no better.
-        const double reach = sphere_radius_[u] + best_length;
-        if ((p - sphere_center_[u]).squaredNorm() >= reach * reach) continue;
+        const Sphere& sphere = spheres_[u];
+        const double reach = sphere.radius + best_length;
+        if ((p - sphere.center).squaredNorm() >= reach * reach) continue;
         const Vec3 q = closest(u);
         const double d = (q - p).squaredNorm();
         if (d < best_d) {

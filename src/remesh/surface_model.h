@@ -74,8 +74,11 @@ class SurfaceModel {
   std::vector<Sym3> metrics_, logs_;
   mesh::SurfaceLocator locator_;
   mesh::VertexTriangles incidence_;
-  std::vector<Vec3> sphere_center_;   // per input triangle, a sphere holding it (walk's pruning)
-  std::vector<double> sphere_radius_;
+  struct Sphere {
+    Vec3 center;
+    double radius;
+  };
+  std::vector<Sphere> spheres_;  // per input triangle, a sphere holding it (walk's pruning)
   analysis::Features features_;
   std::vector<Vec3> copy_normals_;  // per point copy (analysis::Features)
   std::vector<std::unique_ptr<Curve>> curves_;
