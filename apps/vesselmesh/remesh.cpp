@@ -178,13 +178,14 @@ Command add_remesh_command(CLI::App& parent) {
               metric = read_metric(o->metric, input, field_radius);
             }
             // The local radius for the relative distance bound: the distance map's, when the
-            // surface has ends to trace centerlines between.
+            // surface has ends to trace centerlines between (the uniform field does not trace
+            // them for itself; the other kinds have tried already).
             std::optional<centerline::DistanceMap> distance;
             if (sized && sized->distance) {
               distance = sized->distance;
             } else if (!field_radius.empty()) {
               distance = centerline::DistanceMap{.distance = {}, .radius = std::move(field_radius)};
-            } else if (!sized && o->remesh.hausdorff_relative > 0.0) {
+            } else if ((!sized || sized->field.kind == sizing::SizeKind::uniform) && o->remesh.hausdorff_relative > 0.0) {
               try {
                 distance = centerline::distance_map(input, centerline::extract(input, {}, reporter));
               } catch (const InputError& e) {

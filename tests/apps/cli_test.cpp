@@ -360,6 +360,14 @@ TEST(Cli, RemeshWritesTheSurfaceAndTheContractFigures) {
   EXPECT_NEAR(j["triangles"].get<double>(), 3000.0, 90.0);  // the target count, within 3 %
   EXPECT_GE(j["edges_in_unit_range"].get<double>(), 0.9);
   EXPECT_LE(j["hausdorff_relative"].get<double>(), 0.02 + 1e-9);
+  // The uniform field traces no centerlines for itself; the distance bound still takes the
+  // vessel's radius from them (not from the curvature), and says how far it went.
+  const RunResult u = run({"remesh", tmp.path("p.stl"), "--size", "uniform", "--target-triangles", "3000", "-o",
+                           tmp.path("u.vtp"), "--json"});
+  ASSERT_EQ(u.code, 0) << u.err;
+  ASSERT_TRUE(u.json()["hausdorff_relative"].is_number()) << u.out;
+  EXPECT_LE(u.json()["hausdorff_relative"].get<double>(), 0.02 + 1e-9);
+  EXPECT_NEAR(u.json()["triangles"].get<double>(), 3000.0, 90.0);
   const io::SurfaceFile out = io::read_surface(tmp.path("r.vtp"));
   EXPECT_EQ(out.mesh.num_triangles(), j["triangles"].get<int>());
   ASSERT_EQ(out.point_data.size(), 1u);
@@ -382,7 +390,7 @@ TEST(Cli, RemeshWritesTheSurfaceAndTheContractFigures) {
   const RunResult no_metric = run({"remesh", tmp.path("p.stl"), "--metric", tmp.path("p.stl"), "-o", tmp.path("x.vtp")});
   EXPECT_EQ(no_metric.code, 2);
   EXPECT_NE(last_line(no_metric.err).find("no point data 'metric'"), std::string::npos) << no_metric.err;
-  EXPECT_EQ(tmp.files(), (std::vector<std::string>{"f.mesh", "f.sol", "f.vtp", "m.mesh", "p.stl", "r.vtp", "s.stl"}));
+  EXPECT_EQ(tmp.files(), (std::vector<std::string>{"f.mesh", "f.sol", "f.vtp", "m.mesh", "p.stl", "r.vtp", "s.stl", "u.vtp"}));
 }
 
 TEST(Cli, SynthAnastomosisNamesItsEndsAndVolumeTakesThemByPoint) {
