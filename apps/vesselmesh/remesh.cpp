@@ -179,17 +179,30 @@ Command add_remesh_command(CLI::App& parent) {
             }
             // The local radius for the relative distance bound: the distance map's, when the
             // surface has ends to trace centerlines between (the uniform field does not trace
-            // them for itself; the other kinds have tried already).
+            // them for itself; the other kinds have tried already); else its inner poles'.
             std::optional<centerline::DistanceMap> distance;
             if (sized && sized->distance) {
               distance = sized->distance;
             } else if (!field_radius.empty()) {
               distance = centerline::DistanceMap{.distance = {}, .radius = std::move(field_radius)};
-            } else if ((!sized || sized->field.kind == sizing::SizeKind::uniform) && o->remesh.hausdorff_relative > 0.0) {
-              try {
-                distance = centerline::distance_map(input, centerline::extract(input, {}, reporter));
-              } catch (const InputError& e) {
-                reporter.warning(fmt::format("no centerlines ({}); the local radius comes from the curvature", e.what()));
+            } else if (o->remesh.hausdorff_relative > 0.0) {
+              std::string why = "the size field found none";
+              if (!sized || sized->field.kind == sizing::SizeKind::uniform) {
+                try {
+                  distance = centerline::distance_map(input, centerline::extract(input, {}, reporter));
+                } catch (const InputError& e) {
+                  why = e.what();
+                }
+              }
+              if (!distance) {
+                try {
+                  distance = centerline::DistanceMap{.distance = {}, .radius = centerline::pole_radius(input, reporter)};
+                  reporter.warning(fmt::format("no centerlines ({}); the local radius of the distance bound comes from "
+                                               "the inscribed balls at the surface (Voronoi poles)", why));
+                } catch (const InputError& e) {
+                  reporter.warning(fmt::format("no centerlines ({}) nor inscribed balls ({}); the local radius comes "
+                                               "from the curvature", why, e.what()));
+                }
               }
             }
             remesh::RemeshOptions options = o->remesh;

@@ -17,4 +17,13 @@ struct DistanceMap {
 
 DistanceMap distance_map(const TriMesh& surface, const Centerlines& centerlines);
 
+// The local radius where no centerlines can be traced (a closed segmentation with rounded ends):
+// at each surface point, the radius of its inner pole (VoronoiGraph::pole_radius; the surface
+// closed at its open ends, if any, for the inside test), the largest over two rings of
+// triangles and then averaged (see the .cpp). About R on a pipe of radius R; at a bump of the
+// wall it stays about the vessel's radius, where 1/max|k| (the other fallback) falls to the
+// bump's. Points no inside ball touches take the median first. InputError when no Voronoi
+// vertex lies inside (not a closed lumen).
+std::vector<double> pole_radius(const TriMesh& surface, const Reporter& reporter = silent_reporter());
+
 }  // namespace vesselmesh::centerline

@@ -5,12 +5,15 @@
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
-#include <CGAL/Triangulation_vertex_base_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+#include <CGAL/property_map.h>
+#include <CGAL/Spatial_sort_traits_adapter_3.h>
 #include <CGAL/hilbert_sort.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <numeric>
 
 namespace vesselmesh::centerline {
@@ -18,7 +21,8 @@ namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using CellBase = CGAL::Triangulation_cell_base_with_info_3<int, Kernel>;  // our node index, or -1
-using Tds = CGAL::Triangulation_data_structure_3<CGAL::Triangulation_vertex_base_3<Kernel>, CellBase>;
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_3<int, Kernel>;  // a surface point's index
+using Tds = CGAL::Triangulation_data_structure_3<VertexBase, CellBase>;
 using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, Tds>;
 using Point = Kernel::Point_3;
 
@@ -27,14 +31,21 @@ using Point = Kernel::Point_3;
 VoronoiGraph internal_voronoi(const TriMesh& surface, const mesh::InsideTest& inside, const Reporter& reporter) {
   const std::string task = "building the Voronoi diagram";
   reporter.progress(task, 0.0);
-  std::vector<Point> points;
+  std::vector<std::pair<Point, int>> points;
   points.reserve(surface.points.size());
-  for (const Vec3& p : surface.points) points.emplace_back(p.x(), p.y(), p.z());
+  for (int i = 0; i < surface.num_points(); ++i) {
+    const Vec3& p = surface.points[i];
+    points.emplace_back(Point(p.x(), p.y(), p.z()), i);
+  }
   // A fixed insertion order (CGAL's default range insertion shuffles with a random generator).
-  CGAL::hilbert_sort(points.begin(), points.end());
+  CGAL::hilbert_sort(points.begin(), points.end(),
+                     CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::First_of_pair_property_map<std::pair<Point, int>>>());
   Delaunay delaunay;
   Delaunay::Vertex_handle hint;
-  for (const Point& p : points) hint = delaunay.insert(p, hint);
+  for (const auto& [p, i] : points) {
+    hint = delaunay.insert(p, hint);
+    hint->info() = i;  // a point given twice keeps its last index
+  }
   reporter.progress(task, 0.4);
 
   // Circumcentres in cell order; which of them lie inside is asked in parallel (the queries
@@ -62,6 +73,16 @@ VoronoiGraph internal_voronoi(const TriMesh& surface, const mesh::InsideTest& in
     cell->info() = graph.size();
     graph.centers.push_back(centers[index]);
     graph.radius.push_back(radii[index]);
+  }
+  // Each surface point's inner pole: the largest inside ball its cells' circumspheres give.
+  graph.pole_radius.assign(surface.points.size(), 0.0);
+  index = 0;
+  for (auto cell = delaunay.finite_cells_begin(); cell != delaunay.finite_cells_end(); ++cell, ++index) {
+    if (!keep[index]) continue;
+    for (int i = 0; i < 4; ++i) {
+      double& pole = graph.pole_radius[cell->vertex(i)->info()];
+      pole = std::max(pole, radii[index]);
+    }
   }
   for (auto cell = delaunay.all_cells_begin(); cell != delaunay.all_cells_end(); ++cell)
     if (delaunay.is_infinite(cell)) cell->info() = -1;

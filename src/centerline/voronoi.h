@@ -22,6 +22,9 @@ struct VoronoiGraph {
   std::vector<double> radius;   // their ball radius (MISR), in the mesh's unit
   std::vector<int> offsets;     // CSR adjacency: neighbours of i are
   std::vector<int> neighbours;  //   neighbours[offsets[i] .. offsets[i + 1])
+  // Per surface point, the radius of its inner pole: the largest of the inside balls that touch
+  // it (Amenta et al.'s pole), about the vessel's radius there; 0 where no inside ball touches.
+  std::vector<double> pole_radius;
   int size() const { return static_cast<int>(centers.size()); }
 };
 

@@ -368,6 +368,16 @@ TEST(Cli, RemeshWritesTheSurfaceAndTheContractFigures) {
   ASSERT_TRUE(u.json()["hausdorff_relative"].is_number()) << u.out;
   EXPECT_LE(u.json()["hausdorff_relative"].get<double>(), 0.02 + 1e-9);
   EXPECT_NEAR(u.json()["triangles"].get<double>(), 3000.0, 90.0);
+  // A closed surface has no ends to trace centerlines between: the radius comes from its inner
+  // poles (the tube's 3 mm on a torus, not the curvature's 13 mm on its outer rim), and it says so.
+  ASSERT_EQ(run({"synth", "torus", "--resolution", "0.4", "-o", tmp.path("t.stl")}).code, 0);
+  const RunResult closed = run({"remesh", tmp.path("t.stl"), "--size", "uniform", "--target-triangles", "3000", "-o",
+                                tmp.path("t.vtp"), "--json"});
+  ASSERT_EQ(closed.code, 0) << closed.err;
+  EXPECT_NE(closed.err.find("Voronoi poles"), std::string::npos) << closed.err;
+  ASSERT_TRUE(closed.json()["hausdorff_relative"].is_number()) << closed.out;
+  EXPECT_LE(closed.json()["hausdorff_relative"].get<double>(), 0.02 + 1e-9);
+  EXPECT_NEAR(closed.json()["hausdorff_relative"].get<double>() * 3.0, closed.json()["hausdorff"].get<double>(), 0.01);
   const io::SurfaceFile out = io::read_surface(tmp.path("r.vtp"));
   EXPECT_EQ(out.mesh.num_triangles(), j["triangles"].get<int>());
   ASSERT_EQ(out.point_data.size(), 1u);
@@ -390,7 +400,7 @@ TEST(Cli, RemeshWritesTheSurfaceAndTheContractFigures) {
   const RunResult no_metric = run({"remesh", tmp.path("p.stl"), "--metric", tmp.path("p.stl"), "-o", tmp.path("x.vtp")});
   EXPECT_EQ(no_metric.code, 2);
   EXPECT_NE(last_line(no_metric.err).find("no point data 'metric'"), std::string::npos) << no_metric.err;
-  EXPECT_EQ(tmp.files(), (std::vector<std::string>{"f.mesh", "f.sol", "f.vtp", "m.mesh", "p.stl", "r.vtp", "s.stl", "u.vtp"}));
+  EXPECT_EQ(tmp.files(), (std::vector<std::string>{"f.mesh", "f.sol", "f.vtp", "m.mesh", "p.stl", "r.vtp", "s.stl", "t.stl", "t.vtp", "u.vtp"}));
 }
 
 TEST(Cli, SynthAnastomosisNamesItsEndsAndVolumeTakesThemByPoint) {

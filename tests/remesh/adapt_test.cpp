@@ -245,10 +245,14 @@ TEST_P(RealVessel, AllFourKindsMeetTheTargets) {
   const mesh::Statistics before = mesh::statistics(input);
   const analysis::CurvatureField curvature = analysis::curvature(input);
   std::optional<centerline::DistanceMap> distance;
+  std::vector<double> radius;
   try {
     distance = centerline::distance_map(input, centerline::extract(input));
+    radius = distance->radius;
   } catch (const InputError&) {
-    // A closed surface has no ends: no distance kind, and the radius falls back on 1/|k|.
+    // A closed surface has no ends: no distance kind, and the radius comes from the inner
+    // poles, as `vesselmesh remesh` takes it.
+    radius = centerline::pole_radius(input);
   }
   const std::set<int> labels(input.labels.begin(), input.labels.end());
   for (sizing::SizeKind kind : {sizing::SizeKind::uniform, sizing::SizeKind::distance, sizing::SizeKind::curvature,
@@ -259,7 +263,7 @@ TEST_P(RealVessel, AllFourKindsMeetTheTargets) {
         input, {.kind = kind, .target_triangles = 8000.0},
         {.curvature = &curvature, .distance = distance ? &*distance : nullptr});
     RemeshOptions options;
-    if (distance) options.input_radius = &distance->radius;
+    options.input_radius = &radius;
     const RemeshResult r = adapt(input, field.metric, options);
     const RemeshStats& s = r.stats;
     if (kind == sizing::SizeKind::anisotropic) {
@@ -268,18 +272,9 @@ TEST_P(RealVessel, AllFourKindsMeetTheTargets) {
     } else {
       EXPECT_GE(s.edges_in_unit_range, 0.95) << name;
       EXPECT_GE(s.mean_quality, 0.90) << name;
-      if (distance) {
-        EXPECT_GE(s.min_angle_deg, 20.0) << name;
-      } else {
-        // Known gap (issue 6's note): on the closed model the distance bound comes from the
-        // curvature of its bumps and rounded ends; at this coarse target the uniform mesh keeps
-        // a 19.7-degree triangle there (at 20000 triangles every kind is above 24 degrees).
-        EXPECT_GE(s.min_angle_deg, 18.0) << name;
-      }
+      EXPECT_GE(s.min_angle_deg, 20.0) << name;
     }
-    if (distance) {
-      EXPECT_LE(s.hausdorff_relative, 0.02 + 1e-9) << name;
-    }
+    EXPECT_LE(s.hausdorff_relative, 0.02 + 1e-9) << name;
     // The input's topology and labels.
     const mesh::Statistics after = mesh::statistics(r.mesh);
     EXPECT_EQ(after.components, before.components) << name;
