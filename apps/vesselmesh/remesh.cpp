@@ -145,8 +145,10 @@ Command add_remesh_command(CLI::App& parent) {
                   "plane; isotropic: an anisotropic field is met through its smallest size)")
       ->check(CLI::IsMember({"native", "gmsh"}))
       ->capture_default_str();
-  app->add_option("--gmsh-algorithm", o->gmsh_algorithm, "Gmsh's 2D algorithm for --engine gmsh")
-      ->check(CLI::IsMember({"delaunay", "frontal", "meshadapt"}))
+  app->add_option("--gmsh-algorithm", o->gmsh_algorithm,
+                  "Gmsh's 2D algorithm for --engine gmsh (bamg: anisotropic, the whole metric; the others meet its "
+                  "smallest size)")
+      ->check(CLI::IsMember({"delaunay", "frontal", "meshadapt", "bamg"}))
       ->capture_default_str();
   app->add_option("--classify-angle", o->gmsh.classify_angle_deg,
                   "--engine gmsh: patches are split where the normals turn more than this (degrees)")
@@ -223,6 +225,19 @@ Command add_remesh_command(CLI::App& parent) {
                 target > 0.0 ? remesh::fit_count(engine, metric, target, reporter) : engine(metric);
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             const remesh::RemeshStats& s = result.stats;
+            // Gmsh meets the field but not the distance bound (nothing checks its triangles
+            // against the input): say so when its mesh strays beyond.
+            const bool beyond_relative = options.hausdorff_relative > 0.0 && s.hausdorff_relative > options.hausdorff_relative;
+            const bool beyond_absolute = options.hausdorff > 0.0 && s.hausdorff > options.hausdorff;
+            if (gmsh && (beyond_relative || beyond_absolute))
+              reporter.warning(fmt::format(
+                  "Gmsh's mesh strays up to {:.4g} mm from the input{}, beyond the distance bound ({}): its engine does "
+                  "not enforce it; the native engine does",
+                  s.hausdorff,
+                  s.hausdorff_relative >= 0.0 ? fmt::format(" ({:.3g} % of the local radius)", 100.0 * s.hausdorff_relative)
+                                              : std::string(),
+                  beyond_relative ? fmt::format("{:.3g} % of the radius", 100.0 * options.hausdorff_relative)
+                                  : fmt::format("{:.4g} mm", options.hausdorff)));
 
             write_remeshed(o->output, result);
 

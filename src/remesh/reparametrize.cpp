@@ -30,6 +30,7 @@ int gmsh_code(GmshAlgorithm a) {
     case GmshAlgorithm::meshadapt: return 1;
     case GmshAlgorithm::delaunay: return 5;
     case GmshAlgorithm::frontal: return 6;
+    case GmshAlgorithm::bamg: return 7;
   }
   return 5;
 }
@@ -161,9 +162,33 @@ GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& me
         options.set("Mesh.MeshSizeExtendFromBoundary", 0);
         options.set("Mesh.MeshSizeMin", 0.5 * factor * least);
         options.set("Mesh.MeshSizeMax", 2.0 * factor * most);
-        options.size_callback([&model, factor](int, int, double x, double y, double z) {
-          return factor * smallest_size(model.project(Vec3(x, y, z)).metric);
-        });
+        if (o.algorithm == GmshAlgorithm::bamg) {
+          // The whole metric, as a tensor view on the input triangles (list data: it does not
+          // depend on the mesh Gmsh replaces), Gmsh's background mesh; sizes times `factor`.
+          options.set("Mesh.LcIntegrationPrecision", 1e-3);  // else BAMG's 1D meshing takes minutes
+          options.set("Mesh.AnisoMax", 1000.0);
+          options.set("Mesh.SmoothRatio", 3.0);
+          const double scale = 1.0 / (factor * factor);
+          std::vector<double> data;
+          data.reserve(36 * input.triangles.size());
+          for (const Triangle& f : input.triangles) {
+            for (int axis = 0; axis < 3; ++axis)
+              for (int v : f) data.push_back(input.points[v][axis]);
+            for (int v : f) {
+              const auto& m = field[v].v;  // xx, xy, xz, yy, yz, zz
+              for (double x : {m[0], m[1], m[2], m[1], m[3], m[4], m[2], m[4], m[5]}) data.push_back(scale * x);
+            }
+          }
+          const int view = gmsh::view::add("metric");
+          gmsh::view::addListData(view, "TT", input.num_triangles(), data);
+          const int background = gmsh::model::mesh::field::add("PostView");
+          gmsh::model::mesh::field::setNumber(background, "ViewTag", view);
+          gmsh::model::mesh::field::setAsBackgroundMesh(background);
+        } else {
+          options.size_callback([&model, factor](int, int, double x, double y, double z) {
+            return factor * smallest_size(model.project(Vec3(x, y, z)).metric);
+          });
+        }
         reporter.progress("Gmsh: meshing the patches", 0.0);
         gmsh::model::mesh::generate(2);
         reporter.progress("Gmsh: meshing the patches", 1.0);

@@ -340,6 +340,15 @@ TEST(Cli, RemeshByGmshGivesTheSameFiguresAndNamesItsEngine) {
   EXPECT_GT(j["edges_in_unit_range"].get<double>(), 0.7);
   const io::SurfaceFile out = io::read_surface(tmp.path("g.vtp"));
   EXPECT_EQ(out.mesh.num_triangles(), j["triangles"].get<int>());
+  // Gmsh does not enforce the distance bound: a mesh beyond it is written, with a warning
+  // naming how far it strays (Frontal here goes a little beyond 2 % of the radius).
+  EXPECT_EQ(r.err.find("beyond the distance bound") != std::string::npos, j["hausdorff_relative"].get<double>() > 0.02)
+      << r.err;
+  const RunResult far = run({"remesh", tmp.path("p.stl"), "--size", "uniform", "--h", "1.5", "--engine", "gmsh",
+                             "--gmsh-algorithm", "bamg", "--hausdorff", "0.002", "-o", tmp.path("b.vtp")});
+  ASSERT_EQ(far.code, 0) << far.err;
+  EXPECT_NE(far.err.find("warning: Gmsh's mesh strays up to"), std::string::npos) << far.err;
+  EXPECT_NE(far.err.find("beyond the distance bound (0.002 mm)"), std::string::npos) << far.err;
   // Gmsh's options without its engine: exit 2, nothing written.
   EXPECT_EQ(run({"remesh", tmp.path("p.stl"), "--size", "uniform", "--h", "1", "--gmsh-algorithm", "frontal", "-o",
                  tmp.path("x.vtp")}).code,
