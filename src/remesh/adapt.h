@@ -34,9 +34,10 @@ struct RemeshOptions {
   FeatureOptions features;
   int max_iterations = 15;        // passes of split / collapse / flip / move
   // Distance bounds: no output triangle farther from the input than `hausdorff` (> 0) nor than
-  // `hausdorff_relative` (> 0) times the local radius: `input_radius` per input point (e.g. the
-  // distance map's radius; the figures then report the largest relative distance), or without
-  // it the radius of the tightest normal section, 1 / max(|k1|, |k2|).
+  // `hausdorff_relative` (> 0) times the local radius: `input_radius` per input point (the
+  // distance map's radius, or centerline::pole_radius on a surface without ends, as `vesselmesh
+  // remesh` passes them; the figures then report the largest relative distance), or without it
+  // the radius of the tightest normal section, 1 / max(|k1|, |k2|), which a bumpy wall shrinks.
   double hausdorff = 0.0;
   double hausdorff_relative = 0.02;
   const std::vector<double>* input_radius = nullptr;
