@@ -2,42 +2,15 @@
 // on first use and forwards to it (see io/gmsh_module.h for why).
 #include "io/gmsh_module.h"
 #include "io/msh.h"
-#include "mesh/error.h"
+#include "modules.h"
 #include "volume/gmsh_fill.h"
-
-#include <dlfcn.h>
-#include <fmt/format.h>
-
-#include <filesystem>
-#include <system_error>
 
 namespace vesselmesh {
 namespace {
 
 const io::GmshCalls& gmsh_calls() {
-  static const io::GmshCalls* calls = []() -> const io::GmshCalls* {
-    std::error_code error;
-    const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", error);
-    const std::filesystem::path folder = error ? std::filesystem::path(".") : program.parent_path();
-    std::string tried;
-    for (const std::filesystem::path& candidate :
-         {folder / io::kGmshModuleFile, folder / io::kGmshModuleInstallFolder / io::kGmshModuleFile}) {
-      void* module = dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
-      if (!module) {
-        const char* why = dlerror();
-        tried += fmt::format("\n  {}: {}", candidate.string(), why ? why : "not opened");
-        continue;
-      }
-      using Entry = const io::GmshCalls* (*)();
-      const auto entry = reinterpret_cast<Entry>(dlsym(module, "vesselmesh_gmsh_calls"));
-      const io::GmshCalls* table = entry ? entry() : nullptr;
-      if (table && table->layout == io::kGmshCallsLayout) return table;
-      tried += fmt::format("\n  {}: built from other sources than this program (rebuild both)", candidate.string());
-    }
-    throw InputError(fmt::format("this command needs Gmsh, whose module {} could not be opened:{}\nbuild the "
-                                 "project again (cmake --build) or reinstall vesselmesh",
-                                 io::kGmshModuleFile, tried));
-  }();
+  static const auto* calls =
+      static_cast<const io::GmshCalls*>(cli::open_module(io::kGmshModuleFile, "vesselmesh_gmsh_calls", io::kGmshCallsLayout));
   return *calls;
 }
 

@@ -65,21 +65,6 @@ int process_rank() {
   return rank;
 }
 
-std::string time_step_options(long long unknowns) {
-  if (unknowns >= kTimeStepSplitUnknowns) return saddle_point_options();
-  return "-ksp_type gmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 100 -pc_type bjacobi -sub_pc_type ilu";
-}
-
-std::string saddle_point_options() {
-  return "-ksp_type fgmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 200 "
-         "-pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full "
-         "-pc_fieldsplit_schur_precondition selfp "
-         "-fieldsplit_u_ksp_type preonly -fieldsplit_u_pc_type bjacobi -fieldsplit_u_sub_pc_type ilu "
-         "-fieldsplit_p_ksp_type preonly -fieldsplit_p_pc_type hypre -fieldsplit_p_pc_hypre_type boomeramg "
-         "-fieldsplit_p_pc_hypre_boomeramg_coarsen_type HMIS -fieldsplit_p_pc_hypre_boomeramg_interp_type ext+i "
-         "-fieldsplit_p_pc_hypre_boomeramg_strong_threshold 0.6";
-}
-
 struct LinearSolver::Impl {
   SparsePattern pattern;
   int block_size = 1;

@@ -38,8 +38,17 @@ struct SolveStats {
 
 // Steady solves: FGMRES with a Schur-complement field split, the velocity block by block-Jacobi
 // ILU, the Schur complement (preconditioned by selfp) by hypre BoomerAMG (HMIS coarsening, ext+i
-// interpolation, strong threshold 0.6); relative tolerance 1e-6.
-std::string saddle_point_options();
+// interpolation, strong threshold 0.6); relative tolerance 1e-6. (Inline, as the other option
+// string: the program has them without opening PETSc's module, flow/petsc_module.h.)
+inline std::string saddle_point_options() {
+  return "-ksp_type fgmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 200 "
+         "-pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full "
+         "-pc_fieldsplit_schur_precondition selfp "
+         "-fieldsplit_u_ksp_type preonly -fieldsplit_u_pc_type bjacobi -fieldsplit_u_sub_pc_type ilu "
+         "-fieldsplit_p_ksp_type preonly -fieldsplit_p_pc_type hypre -fieldsplit_p_pc_hypre_type boomeramg "
+         "-fieldsplit_p_pc_hypre_boomeramg_coarsen_type HMIS -fieldsplit_p_pc_hypre_boomeramg_interp_type ext+i "
+         "-fieldsplit_p_pc_hypre_boomeramg_strong_threshold 0.6";
+}
 // Time steps, whose mass term makes the system diagonally stronger: below
 // kTimeStepSplitUnknowns unknowns, GMRES with block-Jacobi ILU(0) of the whole system (ILU(0)
 // on one process), relative tolerance 1e-6; from there on the field split above. ILU's
@@ -47,7 +56,10 @@ std::string saddle_point_options();
 // (32 iterations) against 0.56 s (17) with the split; 185k: 2.1 s (56) against 2.4 s (11); 490k
 // (the FDA nozzle): ILU not converged in 1000 iterations, the split 16 s (30).
 constexpr long long kTimeStepSplitUnknowns = 200000;
-std::string time_step_options(long long unknowns);
+inline std::string time_step_options(long long unknowns) {
+  if (unknowns >= kTimeStepSplitUnknowns) return saddle_point_options();
+  return "-ksp_type gmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 100 -pc_type bjacobi -sub_pc_type ilu";
+}
 
 // The number of MPI processes this program runs on and this one's rank (start PETSc and MPI
 // when needed).

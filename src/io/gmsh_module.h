@@ -23,10 +23,8 @@
 
 namespace vesselmesh::io {
 
-// The module's file name, and where the program looks for it: beside itself (a build folder),
-// then in ../lib/vesselmesh (an installed program).
+// The module's file name (the program looks for it beside itself, then in ../lib/vesselmesh).
 inline constexpr const char* kGmshModuleFile = "libvesselmesh-gmsh.so";
-inline constexpr const char* kGmshModuleInstallFolder = "../lib/vesselmesh";
 
 // The module's entry points. `layout` is kGmshCallsLayout when the module was built with this
 // header: a program and a module of different builds refuse each other.

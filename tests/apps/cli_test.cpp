@@ -87,14 +87,21 @@ TEST(Cli, UnknownCommandOrOptionExitsWithTwo) {
   EXPECT_EQ(run({}).code, 2);
 }
 
-// Gmsh is a module the program opens when a command needs it (io/gmsh_module.h). A copy of the
-// program without the module beside it runs the commands that do not use Gmsh; one that does
-// fails with exit 2, names the module and writes nothing.
-TEST(Cli, GmshIsOpenedOnlyByTheCommandsThatNeedIt) {
-  test::TemporaryFolder tmp;
-  const std::string alone = tmp.path("vesselmesh");
+// A copy of the program in `folder`, without the modules (Gmsh's, PETSc's) beside it.
+std::string program_alone(const test::TemporaryFolder& folder) {
+  const std::string alone = folder.path("vesselmesh");
   std::filesystem::copy_file(VESSELMESH_PROGRAM, alone);
   std::filesystem::permissions(alone, std::filesystem::perms::owner_all);
+  return alone;
+}
+
+// Gmsh and PETSc are modules the program opens when a command needs them (io/gmsh_module.h,
+// flow/petsc_module.h). A copy of the program without them runs the commands that use neither;
+// one that needs Gmsh fails with exit 2, names the module and writes nothing (PETSc's: see
+// SimulateRunsTheExampleCase).
+TEST(Cli, GmshIsOpenedOnlyByTheCommandsThatNeedIt) {
+  test::TemporaryFolder tmp;
+  const std::string alone = program_alone(tmp);
   ASSERT_FALSE(std::filesystem::exists(tmp.path("libvesselmesh-gmsh.so")));
   ASSERT_EQ(run({"synth", "cylinder", "-o", tmp.path("pipe.stl"), "--radius", "2", "--length", "8"}).code, 0);
 
@@ -558,6 +565,14 @@ TEST(Cli, SimulateRunsTheExampleCase) {
   example.replace("save_every = 10", "save_every = 2");
   test::write_bytes(tmp.path("case.toml"), example.text);
 
+  {  // Without PETSc's module beside it, the program says which it lacks.
+    test::TemporaryFolder elsewhere;
+    const RunResult alone = run_program(program_alone(elsewhere), {"simulate", tmp.path("case.toml"), "-o",
+                                                                    tmp.path("lacking")});
+    EXPECT_EQ(alone.code, 2);
+    EXPECT_NE(alone.err.find("libvesselmesh-petsc.so"), std::string::npos) << alone.err;
+    EXPECT_FALSE(std::filesystem::exists(tmp.path("lacking/summary.json")));
+  }
   const RunResult r = run({"simulate", tmp.path("case.toml"), "-o", tmp.path("out"), "--json"});
   ASSERT_EQ(r.code, 0) << r.err;
   const Json j = r.json();

@@ -1,0 +1,48 @@
+// The library's PETSc solver as this program has it: the LinearSolver here holds one made inside
+// PETSc's module, opened on first use (see flow/petsc_module.h for why).
+#include "flow/linear_solver.h"
+#include "flow/petsc_module.h"
+#include "modules.h"
+
+namespace vesselmesh::flow {
+namespace {
+
+const PetscCalls& petsc_calls() {
+  // Global: OpenMPI's components, which PETSc's MPI loads in turn, look for its symbols there.
+  static const auto* calls = static_cast<const PetscCalls*>(
+      cli::open_module(kPetscModuleFile, "vesselmesh_petsc_calls", kPetscCallsLayout, /*global=*/true));
+  return *calls;
+}
+
+}  // namespace
+
+// Here, Impl is the solver the module made (the module has its own, PETSc's, Impl).
+struct LinearSolver::Impl {
+  LinearSolver* inside = nullptr;
+};
+
+int process_count() { return petsc_calls().process_count(); }
+int process_rank() { return petsc_calls().process_rank(); }
+
+LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::string& defaults,
+                           const std::string& options)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->inside = petsc_calls().create(std::move(pattern), block_size, defaults, options);
+}
+
+LinearSolver::~LinearSolver() {
+  if (impl_ && impl_->inside) petsc_calls().destroy(impl_->inside);
+}
+
+const SparsePattern& LinearSolver::pattern() const { return petsc_calls().pattern(*impl_->inside); }
+
+SolveStats LinearSolver::solve(const std::vector<double>& values, const std::vector<double>& rhs,
+                               std::vector<double>& x) {
+  return petsc_calls().solve(*impl_->inside, values, rhs, x);
+}
+
+void LinearSolver::reuse_preconditioner(bool on) { petsc_calls().reuse_preconditioner(*impl_->inside, on); }
+void LinearSolver::rebuild_preconditioner() { petsc_calls().rebuild_preconditioner(*impl_->inside); }
+std::string LinearSolver::description() const { return petsc_calls().description(*impl_->inside); }
+
+}  // namespace vesselmesh::flow

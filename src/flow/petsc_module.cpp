@@ -1,0 +1,22 @@
+// The entry table of libvesselmesh-petsc.so (see petsc_module.h); built into the module only.
+#include "flow/petsc_module.h"
+
+extern "C" __attribute__((visibility("default"))) const vesselmesh::flow::PetscCalls* vesselmesh_petsc_calls() {
+  using namespace vesselmesh::flow;
+  static const PetscCalls calls{
+      kPetscCallsLayout,
+      &process_count,
+      &process_rank,
+      [](SparsePattern pattern, int block_size, const std::string& defaults, const std::string& options) {
+        return new LinearSolver(std::move(pattern), block_size, defaults, options);
+      },
+      [](LinearSolver* solver) { delete solver; },
+      [](const LinearSolver& solver) -> const SparsePattern& { return solver.pattern(); },
+      [](LinearSolver& solver, const std::vector<double>& values, const std::vector<double>& rhs,
+         std::vector<double>& x) { return solver.solve(values, rhs, x); },
+      [](LinearSolver& solver, bool on) { solver.reuse_preconditioner(on); },
+      [](LinearSolver& solver) { solver.rebuild_preconditioner(); },
+      [](const LinearSolver& solver) { return solver.description(); },
+  };
+  return &calls;
+}

@@ -1,0 +1,33 @@
+// PETSc, loaded only when a command needs it (the flow solver), as Gmsh is (io/gmsh_module.h):
+// PETSc and what it brings (MPI, hypre, MUMPS, Trilinos, ...) cost every command 0.07-0.09 s
+// of symbol binding at start. flow/linear_solver.cpp is built into vesselmesh_lib, which the
+// tests and benchmarks link with PETSc, and into the module libvesselmesh-petsc.so, which the
+// program opens on first use (apps/vesselmesh/petsc_calls.cpp forwards to this table).
+#pragma once
+
+#include "flow/linear_solver.h"
+
+namespace vesselmesh::flow {
+
+inline constexpr const char* kPetscModuleFile = "libvesselmesh-petsc.so";
+
+// The module's entry points: a LinearSolver made, used and destroyed inside the module.
+inline constexpr int kPetscCallsLayout = 1;
+struct PetscCalls {
+  int layout;
+  int (*process_count)();
+  int (*process_rank)();
+  LinearSolver* (*create)(SparsePattern pattern, int block_size, const std::string& defaults,
+                          const std::string& options);
+  void (*destroy)(LinearSolver* solver);
+  const SparsePattern& (*pattern)(const LinearSolver& solver);
+  SolveStats (*solve)(LinearSolver& solver, const std::vector<double>& values, const std::vector<double>& rhs,
+                      std::vector<double>& x);
+  void (*reuse_preconditioner)(LinearSolver& solver, bool on);
+  void (*rebuild_preconditioner)(LinearSolver& solver);
+  std::string (*description)(const LinearSolver& solver);
+};
+
+}  // namespace vesselmesh::flow
+
+extern "C" const vesselmesh::flow::PetscCalls* vesselmesh_petsc_calls();
