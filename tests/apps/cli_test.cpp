@@ -573,6 +573,12 @@ TEST(Cli, SimulateRunsTheExampleCase) {
     EXPECT_NE(alone.err.find("libvesselmesh-petsc.so"), std::string::npos) << alone.err;
     EXPECT_FALSE(std::filesystem::exists(tmp.path("lacking/summary.json")));
   }
+  // PETSc's refusal, raised inside the module, reaches the program as a bad option.
+  const RunResult refused = run({"simulate", tmp.path("case.toml"), "-o", tmp.path("refused"), "--petsc-options",
+                                 "-ksp_type nonsense"});
+  EXPECT_EQ(refused.code, 2);
+  EXPECT_NE(last_line(refused.err).find("PETSc refused the solver options"), std::string::npos) << refused.err;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path("refused/summary.json")));
   const RunResult r = run({"simulate", tmp.path("case.toml"), "-o", tmp.path("out"), "--json"});
   ASSERT_EQ(r.code, 0) << r.err;
   const Json j = r.json();
