@@ -72,8 +72,11 @@ TEST(PoleRadius, ClosedTorusGivesTheTubeRadius) {
 TEST(PoleRadius, OpenPipeAndBifurcationAgreeWithTheDistanceMap) {
   const TriMesh pipe = synth::cylinder({.radius = 3.0, .length = 20, .resolution = 0.3, .jitter = 0.3});
   const std::vector<double> radius = pole_radius(pipe);
-  for (size_t v = 0; v < pipe.points.size(); ++v)
-    if (std::abs(pipe.points[v].z() - 10.0) < 6.0) EXPECT_NEAR(radius[v], 3.0, 0.1 * 3.0) << v;
+  for (size_t v = 0; v < pipe.points.size(); ++v) {
+    if (std::abs(pipe.points[v].z() - 10.0) < 6.0) {
+      EXPECT_NEAR(radius[v], 3.0, 0.1 * 3.0) << v;
+    }
+  }
   const TriMesh y = synth::bifurcation({.radius = 3.0, .daughter_radius = {1.8, 2.4}, .resolution = 0.4});
   const std::vector<double> poles = pole_radius(y);
   const DistanceMap map = distance_map(y, extract(y));
