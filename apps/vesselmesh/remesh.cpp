@@ -142,7 +142,7 @@ Command add_remesh_command(CLI::App& parent) {
       ->capture_default_str();
   app->add_option("--engine", o->engine,
                   "native (local operations in the metric) or gmsh (Gmsh's reparametrization: patches meshed in their "
-                  "plane; isotropic: an anisotropic field is met through its smallest size)")
+                  "plane; see --gmsh-algorithm; it does not enforce the distance bound)")
       ->check(CLI::IsMember({"native", "gmsh"}))
       ->capture_default_str();
   app->add_option("--gmsh-algorithm", o->gmsh_algorithm,
@@ -188,7 +188,7 @@ Command add_remesh_command(CLI::App& parent) {
             } else if (!field_radius.empty()) {
               distance = centerline::DistanceMap{.distance = {}, .radius = std::move(field_radius)};
             } else if (o->remesh.hausdorff_relative > 0.0) {
-              std::string why = "the size field found none";
+              std::string why = "as said above";
               if (!sized || sized->field.kind == sizing::SizeKind::uniform) {
                 try {
                   distance = centerline::distance_map(input, centerline::extract(input, {}, reporter));

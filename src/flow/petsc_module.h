@@ -11,7 +11,8 @@ namespace vesselmesh::flow {
 
 inline constexpr const char* kPetscModuleFile = "libvesselmesh-petsc.so";
 
-// The module's entry points: a LinearSolver made, used and destroyed inside the module.
+// The module's entry points: a LinearSolver made, used and destroyed inside the module; `layout`
+// first, as in io/gmsh_module.h.
 inline constexpr int kPetscCallsLayout = 1;
 struct PetscCalls {
   int layout;

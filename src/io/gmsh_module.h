@@ -5,7 +5,7 @@
 // our other libraries starts in 0.02 s, with libgmsh too in 0.25 s), paid by every command,
 // though only .msh files, the volume fill and `remesh --engine gmsh` use Gmsh. So the library's
 // code that calls Gmsh (io/msh.cpp, io/gmsh_session.cpp, remesh/reparametrize.cpp,
-// volume/gmsh_fill.cpp) is built twice over: into vesselmesh_lib, which the tests and the
+// volume/gmsh_fill.cpp) is compiled once and linked twice: into vesselmesh_lib, which the tests and the
 // benchmarks link with Gmsh as usual, and into a module, libvesselmesh-gmsh.so, that the
 // program opens on the first call of one of those functions (apps/vesselmesh/gmsh_calls.cpp
 // defines them for the program, each forwarding to the module's table below).
@@ -26,8 +26,9 @@ namespace vesselmesh::io {
 // The module's file name (the program looks for it beside itself, then in ../lib/vesselmesh).
 inline constexpr const char* kGmshModuleFile = "libvesselmesh-gmsh.so";
 
-// The module's entry points. `layout` is kGmshCallsLayout when the module was built with this
-// header: a program and a module of different builds refuse each other.
+// The module's entry points. `layout` (first: the program's loader reads it there) is
+// kGmshCallsLayout when the module was built with this header: a program and a module of
+// different builds refuse each other.
 inline constexpr int kGmshCallsLayout = 1;
 struct GmshCalls {
   int layout;

@@ -132,6 +132,11 @@ TEST(Reparametrize, LeavesGmshAsItFoundIt) {
   const TriMesh input = synth::cylinder({.radius = 1.0, .length = 3.0, .resolution = 0.2});
   reparametrize(input, uniform(input, 0.12), {});
   EXPECT_EQ(tets(), before);
+  // BAMG's background field and tensor view must not outlive its run either.
+  GmshRemeshOptions bamg;
+  bamg.algorithm = GmshAlgorithm::bamg;
+  reparametrize(input, uniform(input, 0.12), bamg);
+  EXPECT_EQ(tets(), before);
 }
 
 TEST(Reparametrize, BadOptionsAndFieldsAreErrors) {
