@@ -214,15 +214,15 @@ Command add_remesh_command(CLI::App& parent) {
             remesh::GmshRemeshOptions gmsh_options = o->gmsh;
             gmsh_options.algorithm = remesh::parse_gmsh_algorithm(o->gmsh_algorithm);
             gmsh_options.remesh = options;
-            const remesh::Engine engine = [&](const std::vector<Sym3>& m) {
-              if (!gmsh) return remesh::adapt(input, m, options, reporter);
-              remesh::GmshRemeshResult r = remesh::reparametrize(input, m, gmsh_options, reporter);
+            // Gmsh's engine runs its count loop itself (one classification for all the runs).
+            gmsh_options.target_triangles = std::max(0.0, target);
+            const remesh::RemeshResult result = [&] {
+              if (!gmsh) return target > 0.0 ? remesh::adapt_to_count(input, metric, target, options, reporter)
+                                             : remesh::adapt(input, metric, options, reporter);
+              remesh::GmshRemeshResult r = remesh::reparametrize(input, metric, gmsh_options, reporter);
               patches = r.patches;
-              gmsh_options.size_factor = r.size_factor;  // Gmsh's calibration on this input, for the next run
               return std::move(r.result);
-            };
-            const remesh::RemeshResult result =
-                target > 0.0 ? remesh::fit_count(engine, metric, target, reporter) : engine(metric);
+            }();
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             const remesh::RemeshStats& s = result.stats;
             // Gmsh meets the field but not the distance bound (nothing checks its triangles

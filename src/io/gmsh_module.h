@@ -29,7 +29,7 @@ inline constexpr const char* kGmshModuleFile = "libvesselmesh-gmsh.so";
 // The module's entry points. `layout` (first: the program's loader reads it there) is
 // kGmshCallsLayout when the module was built with this header: a program and a module of
 // different builds refuse each other.
-inline constexpr int kGmshCallsLayout = 1;
+inline constexpr int kGmshCallsLayout = 2;
 struct GmshCalls {
   int layout;
   void (*write_surface_msh)(const std::string& path, const TriMesh& mesh, const std::map<int, std::string>& label_names);

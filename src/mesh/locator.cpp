@@ -8,6 +8,7 @@
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
@@ -15,18 +16,30 @@
 namespace vesselmesh::mesh {
 namespace {
 
+// The inside test shoots rays: its predicates must be exact. Closest points need no exact
+// predicate, and an exact one costs dearly: a query on the surface itself (Gmsh's size callback,
+// the remesher's projections) is as close to two triangles sharing an edge, a tie that a filtered
+// kernel settles in rational arithmetic (measured: a fifth of a Gmsh remesh in GMP). So the AABB
+// trees use plain doubles, as CGAL's AABB documentation advises for speed.
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
+using FastKernel = CGAL::Simple_cartesian<double>;
 
-Point to_cgal(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
-Vec3 from_cgal(const Point& p) { return {p.x(), p.y(), p.z()}; }
+template <typename P = Point>
+P to_cgal(const Vec3& p) {
+  return {p.x(), p.y(), p.z()};
+}
+template <typename P>
+Vec3 from_cgal(const P& p) {
+  return {p.x(), p.y(), p.z()};
+}
 
 }  // namespace
 
 struct SurfaceLocator::Impl {
-  using Triangles = std::vector<Kernel::Triangle_3>;
-  using Primitive = CGAL::AABB_triangle_primitive<Kernel, Triangles::const_iterator>;
-  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+  using Triangles = std::vector<FastKernel::Triangle_3>;
+  using Primitive = CGAL::AABB_triangle_primitive<FastKernel, Triangles::const_iterator>;
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<FastKernel, Primitive>>;
   Triangles triangles;
   Tree tree;
 };
@@ -35,7 +48,9 @@ SurfaceLocator::SurfaceLocator(const TriMesh& mesh) : impl_(std::make_unique<Imp
   VM_CHECK(!mesh.triangles.empty(), "a surface locator needs triangles");
   impl_->triangles.reserve(mesh.triangles.size());
   for (const Triangle& f : mesh.triangles)
-    impl_->triangles.emplace_back(to_cgal(mesh.points[f[0]]), to_cgal(mesh.points[f[1]]), to_cgal(mesh.points[f[2]]));
+    impl_->triangles.emplace_back(to_cgal<FastKernel::Point_3>(mesh.points[f[0]]),
+                                  to_cgal<FastKernel::Point_3>(mesh.points[f[1]]),
+                                  to_cgal<FastKernel::Point_3>(mesh.points[f[2]]));
   impl_->tree.insert(impl_->triangles.begin(), impl_->triangles.end());
   impl_->tree.build();
   impl_->tree.accelerate_distance_queries();
@@ -46,7 +61,7 @@ SurfaceLocator::SurfaceLocator(SurfaceLocator&&) noexcept = default;
 SurfaceLocator& SurfaceLocator::operator=(SurfaceLocator&&) noexcept = default;
 
 SurfaceLocator::Hit SurfaceLocator::closest(const Vec3& p) const {
-  const auto [point, primitive] = impl_->tree.closest_point_and_primitive(to_cgal(p));
+  const auto [point, primitive] = impl_->tree.closest_point_and_primitive(to_cgal<FastKernel::Point_3>(p));
   Hit hit;
   hit.point = from_cgal(point);
   hit.triangle = static_cast<int>(primitive - impl_->triangles.begin());
@@ -83,16 +98,17 @@ InsideTest::~InsideTest() = default;
 bool InsideTest::inside(const Vec3& p) const { return (*impl_->side)(to_cgal(p)) == CGAL::ON_BOUNDED_SIDE; }
 
 struct SegmentLocator::Impl {
-  using Segments = std::vector<Kernel::Segment_3>;
-  using Primitive = CGAL::AABB_segment_primitive<Kernel, Segments::const_iterator>;
-  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+  using Segments = std::vector<FastKernel::Segment_3>;
+  using Primitive = CGAL::AABB_segment_primitive<FastKernel, Segments::const_iterator>;
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<FastKernel, Primitive>>;
   Segments segments;
   Tree tree;
 };
 
 SegmentLocator::SegmentLocator(const std::vector<std::array<Vec3, 2>>& segments) : impl_(std::make_unique<Impl>()) {
   VM_CHECK(!segments.empty(), "a segment locator needs segments");
-  for (const auto& s : segments) impl_->segments.emplace_back(to_cgal(s[0]), to_cgal(s[1]));
+  for (const auto& s : segments)
+    impl_->segments.emplace_back(to_cgal<FastKernel::Point_3>(s[0]), to_cgal<FastKernel::Point_3>(s[1]));
   impl_->tree.insert(impl_->segments.begin(), impl_->segments.end());
   impl_->tree.build();
   impl_->tree.accelerate_distance_queries();
@@ -101,7 +117,7 @@ SegmentLocator::SegmentLocator(const std::vector<std::array<Vec3, 2>>& segments)
 SegmentLocator::~SegmentLocator() = default;
 
 SegmentLocator::Hit SegmentLocator::closest(const Vec3& p) const {
-  const auto [point, primitive] = impl_->tree.closest_point_and_primitive(to_cgal(p));
+  const auto [point, primitive] = impl_->tree.closest_point_and_primitive(to_cgal<FastKernel::Point_3>(p));
   Hit hit;
   hit.point = from_cgal(point);
   hit.segment = static_cast<int>(primitive - impl_->segments.begin());

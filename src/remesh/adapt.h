@@ -81,7 +81,8 @@ RemeshResult adapt(const TriMesh& input, const std::vector<Sym3>& metrics, const
 // count goes as the metric's density; then interpolating the bracketing runs in log-log) and
 // adapt() again, `max_corrections` times at most; the closest run is returned. The sizing
 // issue's target count (3 %; the 2 % default leaves a margin). The distance bound's refinement
-// does not scale, so a count it dominates may stay above target.
+// does not scale, so a count it dominates may stay above target: two proportional steps in a row
+// that each move the count by less than a quarter of what they asked (in log) end the loop.
 RemeshResult adapt_to_count(const TriMesh& input, const std::vector<Sym3>& metrics, double target_triangles,
                             const RemeshOptions& options = {}, const Reporter& reporter = silent_reporter(),
                             double tolerance = 0.02, int max_corrections = 4);

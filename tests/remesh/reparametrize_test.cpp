@@ -9,9 +9,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <set>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace vesselmesh::remesh {
 namespace {
@@ -51,6 +55,42 @@ TEST(Reparametrize, OpenPipeToAUniformSize) {
   const GmshRemeshResult c = reparametrize(input, uniform(input, h), fine);
   EXPECT_NEAR(c.size_factor, 1.0, 0.3);
   EXPECT_NEAR(mesh::statistics(c.result.mesh).edge_length.mean, h, 0.25 * h);
+}
+
+// Records the tasks begun (progress at 0) and the messages.
+class Recorder : public Reporter {
+ public:
+  void info(std::string_view message) const override { messages.emplace_back(message); }
+  void progress(std::string_view task, double fraction) const override {
+    if (fraction == 0.0) begun.emplace_back(task);
+  }
+  int count(std::string_view task) const { return static_cast<int>(std::count(begun.begin(), begun.end(), task)); }
+  mutable std::vector<std::string> begun, messages;
+};
+
+// A target count: the metric scaled until Gmsh meets it (as fit_count does for the native
+// engine), the input classified once for all the runs; the result is the run a fresh call with
+// the metric it met gives.
+TEST(Reparametrize, TargetCountWithOneClassification) {
+  const TriMesh input = synth::cylinder({.radius = 3.0, .length = 20.0, .resolution = 0.4, .jitter = 0.3});
+  GmshRemeshOptions o;
+  o.target_triangles = 2500;
+  Recorder recorder;
+  const GmshRemeshResult g = reparametrize(input, uniform(input, 0.8), o, recorder);
+  EXPECT_NEAR(g.result.stats.triangles, 2500, 0.02 * 2500);
+  EXPECT_EQ(g.result.stats.triangles, g.result.mesh.num_triangles());
+  EXPECT_EQ(recorder.count("Gmsh: classifying and parametrizing patches"), 1);
+  const int runs = recorder.count("Gmsh: meshing the patches");
+  EXPECT_GE(runs, 2);  // 0.8 makes about 4000 triangles on this pipe
+  EXPECT_LE(runs, 5);
+  // The metric it met is uniform: a fresh call with it makes the same mesh.
+  const double h = 1.0 / std::sqrt(g.result.metric[0].v[0]);
+  for (const Sym3& m : g.result.metric) EXPECT_NEAR(m.v[0], g.result.metric[0].v[0], 1e-9 * m.v[0]);
+  const GmshRemeshResult again = reparametrize(input, uniform(input, h), {});
+  EXPECT_EQ(again.result.stats.triangles, g.result.stats.triangles);
+  GmshRemeshOptions bad;
+  bad.target_triangles = -1.0;
+  EXPECT_THROW(reparametrize(input, uniform(input, 0.8), bad), OptionError);
 }
 
 // The anisotropic metric whole, through BAMG and a tensor view: on a pipe asking 4 times longer
