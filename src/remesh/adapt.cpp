@@ -750,6 +750,10 @@ RemeshResult fit_count(const Engine& engine, const std::vector<Sym3>& metrics, d
       const Run& last = runs.back();
       scale = last.scale * target_triangles / std::max(1.0, last.count);
     }
+    // A scale tried already gives the same mesh again (the engines are deterministic): a
+    // scattered count left the bracket as it was.
+    if (std::any_of(runs.begin(), runs.end(), [&](const Run& r) { return std::abs(r.scale / scale - 1.0) < 1e-9; }))
+      break;
     reporter.info(fmt::format("{} triangles for a target of {:.0f}: scaling the metric by {:.3f} and remeshing",
                               result.stats.triangles, target_triangles, scale));
     std::vector<Sym3> scaled = metrics;

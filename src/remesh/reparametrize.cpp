@@ -316,9 +316,8 @@ GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& me
   ScopedOptions options;
   Patches patches(input, o, options, reporter);
   out.patches = patches.count();
-  // Gmsh's edges come out shorter than asked on some inputs (0.46 of the size on the aortic arch,
-  // whatever the size; right on a pipe): the first run calibrates the sizes handed to Gmsh
-  // (remesh_once), later runs of the count loop keep that scale and vary the metric's.
+  // Should Gmsh's edges come out off the size asked, the first run calibrates the sizes handed to
+  // Gmsh (remesh_once); later runs of the count loop keep that scale and vary the metric's.
   double factor = o.size_factor;
   bool first = true;
   const Engine engine = [&](const std::vector<Sym3>& m) {

@@ -12,11 +12,12 @@
 // than Delaunay, far less than the native engine, and its stretched triangles can stray from
 // curved patches (README: measured figures). No Gmsh algorithm here enforces the distance bound.
 //
-// Gmsh's edges can come out shorter than asked (0.46 of the size on the aortic arch, right on a
-// pipe): the first run measures the median edge in the field and, when it is off by more than
-// 15 %, scales the sizes handed to Gmsh by its inverse and meshes again (twice at most). Later
-// runs of a count loop keep that scale. Each run meshes the same patches again: the
-// classification and the parametrization are made once per call.
+// Gmsh's tolerances follow the model's size, which adding nodes through the API does not set:
+// it is set before classifying (without it the aortic arch's patches came out with edges 0.46 of
+// the size asked, whatever the size). Should Gmsh's median edge still be off the field by more
+// than 15 %, the first run scales the sizes handed to it by the inverse and meshes again (twice at
+// most); later runs of a count loop keep that scale. Each run meshes the same patches again:
+// the classification and the parametrization are made once per call.
 //
 // Output: the same as adapt() gives — the surface (labels carried from the closest input
 // triangle), the metric per output point, the figures against that metric (measure()). A patch

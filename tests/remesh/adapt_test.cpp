@@ -16,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -218,6 +219,46 @@ TEST(Remesh, TargetCountIsReachedWithinThreePercent) {
   const std::vector<Sym3> metric = metric_of(input, [](const Vec3&) { return sizing::isotropic_metric(1.0); });
   const RemeshResult r = adapt_to_count(input, metric, 1500.0);
   EXPECT_NEAR(r.stats.triangles, 1500.0, 45.0);
+}
+
+// fit_count on an engine whose count is a given function of the metric's scale (the metric is
+// the identity scaled: its first entry is the scale).
+struct CountingEngine {
+  std::function<int(double)> count;
+  mutable std::vector<double> scales;
+  RemeshResult operator()(const std::vector<Sym3>& metric) const {
+    scales.push_back(metric[0].v[0]);
+    RemeshResult r;
+    r.stats.triangles = count(metric[0].v[0]);
+    return r;
+  }
+};
+
+// A count a bound holds (it barely moves with the scale): two weak steps in a row end the loop,
+// the closest run kept; one weak step alone (scatter) does not.
+TEST(FitCount, EndsWhenABoundHoldsTheCount) {
+  const std::vector<Sym3> identity(4, Sym3::from_matrix(Eigen::Matrix3d::Identity()));
+  CountingEngine held{[](double s) { return static_cast<int>(16000.0 * std::pow(s, 0.05)); }};
+  const RemeshResult r = fit_count(std::cref(held), identity, 8000.0);
+  EXPECT_EQ(held.scales.size(), 3u);  // the first run and two weak steps (4 corrections allowed)
+  EXPECT_EQ(r.stats.triangles, held.count(held.scales.back()));
+  EXPECT_LT(r.stats.triangles, 16000);
+  // Weak once (scatter), then proportional again: the target is reached.
+  CountingEngine scattered{[](double s) { return s > 0.8 ? 11526 : static_cast<int>(11526.0 * s / 0.8); }};
+  const RemeshResult t = fit_count(std::cref(scattered), identity, 10000.0);
+  EXPECT_NEAR(t.stats.triangles, 10000, 200);
+}
+
+// A scattered count that leaves the bracket as it was would repeat a scale: the loop ends instead.
+TEST(FitCount, NeverRepeatsAScale) {
+  const std::vector<Sym3> identity(4, Sym3::from_matrix(Eigen::Matrix3d::Identity()));
+  CountingEngine engine{[](double s) { return s < 1.2 ? 6000 : (s < 1.9 ? 5000 : 18000); }};
+  const RemeshResult r = fit_count(std::cref(engine), identity, 12000.0);
+  std::vector<double> sorted = engine.scales;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end());
+  EXPECT_EQ(engine.scales.size(), 3u);  // 1, 2, then the interpolated one
+  EXPECT_EQ(r.stats.triangles, 6000);   // the closest of 6000, 18000 and 5000
 }
 
 TEST(Remesh, AMetricOfAnotherSurfaceIsAnError) {
