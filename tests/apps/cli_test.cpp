@@ -356,6 +356,14 @@ TEST(Cli, RemeshByGmshGivesTheSameFiguresAndNamesItsEngine) {
   ASSERT_EQ(far.code, 0) << far.err;
   EXPECT_NE(far.err.find("warning: Gmsh's mesh strays up to"), std::string::npos) << far.err;
   EXPECT_NE(far.err.find("beyond the distance bound (0.002 mm)"), std::string::npos) << far.err;
+  // Gmsh leaving a hole (a size ten times a sphere's radius): exit 2, one line naming the
+  // topology, nothing written.
+  ASSERT_EQ(run({"synth", "sphere", "--radius", "3", "-o", tmp.path("s.stl")}).code, 0);
+  const RunResult hole = run({"remesh", tmp.path("s.stl"), "--size", "uniform", "--h", "30", "--hausdorff-relative",
+                              "0", "--engine", "gmsh", "-o", tmp.path("s.vtp")});
+  EXPECT_EQ(hole.code, 2);
+  EXPECT_NE(hole.err.find("error: Gmsh's mesh does not have the input's topology"), std::string::npos) << hole.err;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path("s.vtp")));
   // Gmsh's options without its engine: exit 2, nothing written.
   EXPECT_EQ(run({"remesh", tmp.path("p.stl"), "--size", "uniform", "--h", "1", "--gmsh-algorithm", "frontal", "-o",
                  tmp.path("x.vtp")}).code,

@@ -198,6 +198,20 @@ TEST(Reparametrize, RealArchFollowsTheSize) {
   EXPECT_NEAR(mesh::statistics(g.result.mesh).edge_length.mean, h, 0.15 * h);
 }
 
+// A size ten times a sphere's radius: Gmsh leaves a patch with a hole. That is an error naming the
+// topology, never a mesh with holes.
+TEST(Reparametrize, AHoleLeftByGmshIsAnError) {
+  const TriMesh input = synth::sphere({.radius = 3.0, .resolution = 0.4});
+  GmshRemeshOptions o;
+  o.remesh.hausdorff_relative = 0.0;
+  try {
+    reparametrize(input, uniform(input, 30.0), o);
+    ADD_FAILURE() << "Gmsh's mesh with a hole was handed on";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("does not have the input's topology"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Reparametrize, BadOptionsAndFieldsAreErrors) {
   const TriMesh input = synth::sphere({.radius = 3.0, .resolution = 0.8});
   EXPECT_THROW(parse_gmsh_algorithm("bamg2"), OptionError);
