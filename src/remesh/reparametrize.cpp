@@ -192,7 +192,21 @@ class Patches {
         });
       }
       reporter_.progress("Gmsh: meshing the patches", 0.0);
+      // Gmsh meshes the patches inside an OpenMP region, where an error it throws cannot be
+      // caught and ends the program. So its errors are only logged while it meshes (the session
+      // throws on them everywhere else), and the first one logged is ours to raise.
+      std::vector<std::string> log;
+      gmsh::logger::get(log);
+      const size_t logged = log.size();
+      gmsh::option::setNumber("General.AbortOnError", 0);
       gmsh::model::mesh::generate(2);
+      gmsh::option::setNumber("General.AbortOnError", 2);
+      gmsh::logger::get(log);
+      for (size_t i = logged; i < log.size(); ++i)
+        if (log[i].rfind("Error", 0) == 0)
+          throw InputError(fmt::format("Gmsh failed to mesh the patches ({}): lower the classification angle to cut "
+                                       "them smaller, or use the native engine",
+                                       log[i]));
       reporter_.progress("Gmsh: meshing the patches", 1.0);
 
       std::vector<std::size_t> tags;
