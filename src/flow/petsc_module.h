@@ -12,7 +12,7 @@ namespace vesselmesh::flow {
 inline constexpr const char* kPetscModuleFile = "libvesselmesh-petsc.so";
 
 // The module's entry points: a LinearSolver made, used and destroyed inside the module; `layout`
-// first, as in io/gmsh_module.h.
+// first, as in io/gmsh_module.h (raise it when this table or a type it passes changes).
 inline constexpr int kPetscCallsLayout = 1;
 struct PetscCalls {
   int layout;

@@ -28,7 +28,8 @@ inline constexpr const char* kGmshModuleFile = "libvesselmesh-gmsh.so";
 
 // The module's entry points. `layout` (first: the program's loader reads it there) is
 // kGmshCallsLayout when the module was built with this header: a program and a module of
-// different builds refuse each other.
+// different builds refuse each other. Raise it when this table or a type it passes changes
+// (GmshRemeshOptions grew target_triangles: 1 -> 2).
 inline constexpr int kGmshCallsLayout = 2;
 struct GmshCalls {
   int layout;
