@@ -1,9 +1,8 @@
 // The Gmsh peer of bench/remesh.sh, when no mmgs is given: Debian's Gmsh remeshes the input
 // triangulation with the isotropic size of FIELD.vtp (point data size) as a background field:
 // the surface reclassified (40-degree feature angle) and reparametrized, then meshed with
-// Frontal-Delaunay. Writes OUTPUT.vtp. (Without the synchronize call after adding the nodes,
-// which sets the model's size, Gmsh made 2.6 times the triangles the field asked for on the
-// aortic arch.)
+// Frontal-Delaunay. Writes OUTPUT.vtp. (Before the model's size was set after adding the nodes,
+// Gmsh made 2.6 times the triangles the field asked for on the aortic arch.)
 //   bench_remesh_gmsh FIELD.vtp OUTPUT.vtp
 #include "io/gmsh_session.h"
 #include "io/surface.h"
@@ -33,19 +32,7 @@ int main(int argc, char** argv) {
     io::GmshSession session;
     io::call_gmsh("Gmsh remeshing", [&] {
       gmsh::model::add("input");
-      const int surface = gmsh::model::addDiscreteEntity(2);
-      std::vector<std::size_t> nodes;
-      std::vector<double> coords;
-      for (int v = 0; v < in.num_points(); ++v) {
-        nodes.push_back(static_cast<std::size_t>(v) + 1);
-        coords.insert(coords.end(), {in.points[v].x(), in.points[v].y(), in.points[v].z()});
-      }
-      gmsh::model::mesh::addNodes(2, surface, nodes, coords);
-      std::vector<std::size_t> corners;
-      for (const Triangle& t : in.triangles)
-        for (int v : t) corners.push_back(static_cast<std::size_t>(v) + 1);
-      gmsh::model::mesh::addElementsByType(surface, 2, {}, corners);
-      gmsh::model::geo::synchronize();  // sets the model's size, which Gmsh's tolerances follow
+      io::add_discrete_surface(in);  // sets the model's size too, which Gmsh's tolerances follow
       // The size on the input's triangles, as a post-processing view for the background field.
       std::vector<double> data;
       for (const Triangle& t : in.triangles) {

@@ -44,6 +44,28 @@ GmshSession::~GmshSession() {
   }
 }
 
+void add_discrete_surface(const TriMesh& mesh) {
+  constexpr int kTriangle3 = 2;  // Gmsh's element type of a 3-node triangle
+  gmsh::model::addDiscreteEntity(2, 1);
+  std::vector<std::size_t> node_tags(mesh.points.size());
+  std::vector<double> coords;
+  coords.reserve(3 * mesh.points.size());
+  for (size_t i = 0; i < mesh.points.size(); ++i) {
+    node_tags[i] = i + 1;
+    coords.insert(coords.end(), {mesh.points[i].x(), mesh.points[i].y(), mesh.points[i].z()});
+  }
+  std::vector<std::size_t> element_tags, element_nodes;
+  element_tags.reserve(mesh.triangles.size());
+  element_nodes.reserve(3 * mesh.triangles.size());
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    element_tags.push_back(t + 1);
+    for (int v : mesh.triangles[t]) element_nodes.push_back(static_cast<std::size_t>(v) + 1);
+  }
+  gmsh::model::mesh::addNodes(2, 1, node_tags, coords);
+  gmsh::model::mesh::addElementsByType(1, kTriangle3, element_tags, element_nodes);
+  gmsh::model::geo::synchronize();
+}
+
 void rethrow_gmsh_error(const std::string& context) {
   g_failed = true;  // called inside a session, under the mutex
   std::string message;

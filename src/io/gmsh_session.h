@@ -4,6 +4,7 @@
 #pragma once
 
 #include "mesh/error.h"
+#include "mesh/trimesh.h"
 
 #include <array>
 #include <cstddef>
@@ -31,6 +32,12 @@ template <typename F>
 void call_gmsh(const std::string& context, F&& what);
 
 [[noreturn]] void rethrow_gmsh_error(const std::string& context);
+
+// Adds `mesh` to the current model as discrete surface 1: point i is node i + 1, triangle t
+// element t + 1. Then sets the model's size, which Gmsh's meshing tolerances follow and which
+// reading a file sets but adding nodes does not (without it the aortic arch's patches came out
+// with edges 0.46 of the size asked, whatever the size). Inside a session; Gmsh may throw.
+void add_discrete_surface(const TriMesh& mesh);
 
 // Gmsh's elements of N nodes (`nodes` flat, as getElementsByType gives them) in our numbering
 // through `index_of` (Gmsh's node tag -> our point); InternalError naming `what` on a node the

@@ -105,31 +105,13 @@ class Patches {
       : input_(input), o_(o), options_(options), reporter_(reporter) {
     io::call_gmsh("remeshing by Gmsh (reparametrization)", [&] {
       gmsh::model::add("surface");
-      gmsh::model::addDiscreteEntity(2, 1);
-      std::vector<std::size_t> node_tags(input.points.size());
-      std::vector<double> coords;
-      coords.reserve(3 * input.points.size());
-      for (size_t i = 0; i < input.points.size(); ++i) {
-        node_tags[i] = i + 1;
-        coords.insert(coords.end(), {input.points[i].x(), input.points[i].y(), input.points[i].z()});
-      }
-      std::vector<std::size_t> element_tags, element_nodes;
-      for (size_t t = 0; t < input.triangles.size(); ++t) {
-        element_tags.push_back(t + 1);
-        for (int v : input.triangles[t]) element_nodes.push_back(static_cast<std::size_t>(v) + 1);
-      }
-      gmsh::model::mesh::addNodes(2, 1, node_tags, coords);
-      gmsh::model::mesh::addElementsByType(1, kTriangle3, element_tags, element_nodes);
-      // Gmsh's meshing tolerances are relative to the model's size, which reading a file sets
-      // and adding nodes does not: synchronizing sets it. Without this the patches of the aortic
-      // arch (about 100 mm) came out with edges 0.46 of the size asked, whatever the size; with
-      // it they follow the size as when Gmsh reads the file itself.
-      gmsh::model::geo::synchronize();
+      io::add_discrete_surface(input);
       reporter.progress("Gmsh: classifying and parametrizing patches", 0.0);
       gmsh::model::mesh::classifySurfaces(o.classify_angle_deg * std::numbers::pi / 180.0, true, true,
                                           o.curve_angle_deg * std::numbers::pi / 180.0);
       gmsh::model::mesh::createGeometry();
       gmsh::model::getEntities(surfaces_, 2);
+      if (input.has_labels()) label_patches();
       reporter.progress("Gmsh: classifying and parametrizing patches", 1.0);
 
       options.set("General.NumThreads", 1);  // the size callback is ours and serial
@@ -149,6 +131,14 @@ class Patches {
   }
 
   int count() const { return static_cast<int>(surfaces_.size()); }
+
+  // The input label all of a patch's triangles carry, or kMixed (the patch spans a label border
+  // that is no crease, or no label was read).
+  static constexpr int kMixed = std::numeric_limits<int>::min();
+  int label_of(int patch) const {
+    const auto it = patch_label_.find(patch);
+    return it == patch_label_.end() ? kMixed : it->second;
+  }
 
   // Gmsh's mesh of every patch for `field` (on `model`'s input), its sizes times `factor`: the
   // patches' meshes side by side, their shared curve nodes not yet merged. InputError naming a
@@ -226,8 +216,10 @@ class Patches {
           empty_patches.emplace_back(tag, Vec3(0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.5 * (z0 + z1)));
           continue;
         }
-        for (const Triangle& f : io::in_our_numbering<3>(triangle_nodes, index_of, "triangle"))
+        for (const Triangle& f : io::in_our_numbering<3>(triangle_nodes, index_of, "triangle")) {
           mesh.triangles.push_back(f);
+          mesh.labels.push_back(tag);  // the patch, for now (remesh_once turns it into a label)
+        }
       }
     });
     if (!empty_patches.empty())
@@ -239,12 +231,37 @@ class Patches {
   }
 
  private:
+  // Each patch's input label, from the input triangles classification put in it (their element
+  // tags are our indices + 1; one whose corners differ from ours leaves its patch mixed).
+  void label_patches() {
+    for (const auto& [dim, tag] : surfaces_) {
+      std::vector<std::size_t> element_tags, element_nodes;
+      gmsh::model::mesh::getElementsByType(kTriangle3, element_tags, element_nodes, tag);
+      int label = kMixed;
+      for (size_t e = 0; e < element_tags.size(); ++e) {
+        const std::size_t t = element_tags[e] - 1;
+        const bool ours = t < input_.triangles.size() &&
+                          std::is_permutation(input_.triangles[t].begin(), input_.triangles[t].end(),
+                                              element_nodes.begin() + 3 * e, [](int v, std::size_t node) {
+                                                return static_cast<std::size_t>(v) + 1 == node;
+                                              });
+        if (!ours || (e > 0 && input_.labels[t] != label)) {
+          label = kMixed;
+          break;
+        }
+        label = input_.labels[t];
+      }
+      patch_label_[tag] = label;
+    }
+  }
+
   const TriMesh& input_;
   const GmshRemeshOptions& o_;
   ScopedOptions& options_;
   const Reporter& reporter_;
   gmsh::vectorpair surfaces_;
   int view_ = -1, background_ = -1;  // BAMG's metric view and background field of the last run
+  std::unordered_map<int, int> patch_label_;
 };
 
 // One remeshing of the classified input to `metrics` (as the native engine: intersected with the
@@ -296,13 +313,22 @@ RemeshResult remesh_once(const TriMesh& input, const std::vector<Sym3>& metrics,
     kept_metric[v] = metric[cleaned.point_origin[v]];
     kept_hints[v] = hints[cleaned.point_origin[v]];
   }
+  // Labels: a triangle takes its patch's (the classification never puts a crease inside a patch,
+  // so a flat cap and its wall are apart: a sliver along the rim stays on its side); in a patch
+  // that spans a label border, the label of the input triangle nearest to its centroid.
   if (input.has_labels()) {
-    mesh.labels.resize(mesh.triangles.size());
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const int label = patches.label_of(mesh.labels[t]);
+      if (label != Patches::kMixed) {
+        mesh.labels[t] = label;
+        continue;
+      }
       const Triangle& f = mesh.triangles[t];
       const Vec3 centroid = (mesh.points[f[0]] + mesh.points[f[1]] + mesh.points[f[2]]) / 3.0;
       mesh.labels[t] = input.labels[model.project(centroid).triangle];
     }
+  } else {
+    mesh.labels.clear();
   }
   RemeshResult out;
   out.mesh = std::move(mesh);
