@@ -38,9 +38,10 @@ FaceRecord face_record(const TriMesh& mesh, const std::vector<Vec3>& normals, in
   const Vec3 edge[3] = {mesh.points[f[2]] - mesh.points[f[1]], mesh.points[f[0]] - mesh.points[f[2]],
                         mesh.points[f[1]] - mesh.points[f[0]]};
   const Vec3 n = edge[0].cross(edge[1]);
-  const double l0 = edge[0].norm(), ln = n.norm();
-  if (!(l0 > 0.0) || !(ln > 0.0)) return out;
-  const Vec3 nu = n * (1.0 / ln), tu = edge[0] * (1.0 / l0), tv = nu.cross(tu);
+  const double l2[3] = {edge[0].squaredNorm(), edge[1].squaredNorm(), edge[2].squaredNorm()};
+  const double ln = n.norm();
+  if (!(l2[0] > 0.0) || !(ln > 0.0)) return out;
+  const Vec3 nu = n * (1.0 / ln), tu = edge[0] * (1.0 / std::sqrt(l2[0])), tv = nu.cross(tu);
   double su = 0.0, sv = 0.0, suv = 0.0, r0 = 0.0, r1 = 0.0, r2 = 0.0;
   for (int j = 0; j < 3; ++j) {
     const double u = edge[j].dot(tu), v = edge[j].dot(tv);
@@ -49,16 +50,16 @@ FaceRecord face_record(const TriMesh& mesh, const std::vector<Vec3>& normals, in
     su += u * u, sv += v * v, suv += u * v;
     r0 += du * u, r1 += du * v + dv * u, r2 += dv * v;
   }
-  const double trace = su + sv, det = trace * (su * sv - suv * suv);
+  const double trace = su + sv, minor = su * sv - suv * suv, det = trace * minor;
   if (!(det > 1e-12 * trace * trace * trace)) return out;
   const double inv_det = 1.0 / det;
   const double e = ((trace * sv - suv * suv) * r0 - suv * sv * r1 + suv * suv * r2) * inv_det;
   const double g = (suv * suv * r0 - suv * su * r1 + (trace * su - suv * suv) * r2) * inv_det;
-  const double fm = (r1 - suv * (e + g)) * (su * sv - suv * suv) * inv_det;  // (...) / trace
+  const double fm = (r1 - suv * (e + g)) * minor * inv_det;  // (...) / trace
   if (!std::isfinite(e) || !std::isfinite(g) || !std::isfinite(fm)) return out;
   out.efg[0] = static_cast<float>(e), out.efg[1] = static_cast<float>(fm), out.efg[2] = static_cast<float>(g);
   for (int i = 0; i < 3; ++i) out.n[i] = static_cast<float>(nu[i]), out.tu[i] = static_cast<float>(tu[i]);
-  const std::array<double, 3> corner = triangle_corner_areas(edge);
+  const std::array<double, 3> corner = triangle_corner_areas(l2, 0.5 * ln);
   for (int i = 0; i < 3; ++i) out.area[i] = static_cast<float>(corner[i]);
   return out;
 }
@@ -70,17 +71,16 @@ struct Tensor2 {
 
 // A tensor (e f; f g) given in the frame (tu, m x tu) of a plane with unit normal m, read in
 // the frame (u, v) of the tangent plane with unit normal n. As in Rusinkiewicz's paper the
-// frames are brought into one plane by the smallest rotation between the normals (here tu is
-// turned from m to n: R x = c x + a x x + a (a.x) / (1 + c), a = m x n, c = m.n); both frames
-// are then orthonormal in that plane, so they differ by a plane rotation Q = (cs -sn; sn cs)
-// and the tensor becomes Q II Q^T.
-Tensor2 project(const float efg[3], const Vec3& m, const Vec3& tu, const Vec3& n, const Vec3& u, const Vec3& v) {
+// frames are brought into one plane by the smallest rotation between the normals, here turning
+// tu from m to n: for x orthogonal to m that rotation is R x = x - (x.n) / (1 + c) (m + n), c = m.n
+// (the axis m x n is kept, the plane of m and n turned by the angle between them). Both frames are
+// then orthonormal in that plane, so they differ by a plane rotation Q = (cs -sn; sn cs) and the
+// tensor becomes Q II Q^T.
+inline Tensor2 project(const float efg[3], const Vec3& m, const Vec3& tu, const Vec3& n,
+                       const Vec3& u, const Vec3& v) {
   const double c = m.dot(n);
-  Vec3 r = -tu;  // opposite normals: a half turn
-  if (c > -1.0 + 1e-12) {
-    const Vec3 a = m.cross(n);
-    r = c * tu + a.cross(tu) + (a.dot(tu) / (1.0 + c)) * a;
-  }
+  const Vec3 r = c > -1.0 + 1e-12 ? Vec3(tu - (tu.dot(n) / (1.0 + c)) * (m + n))
+                                  : Vec3(-tu);  // opposite normals: a half turn
   const double cs = r.dot(u), sn = r.dot(v);
   const double e = efg[0], f = efg[1], g = efg[2];
   const double cc = cs * cs, ss = sn * sn, cn = cs * sn;
@@ -144,59 +144,80 @@ void smooth(const TriMesh& mesh, const mesh::VertexTriangles& corners, const std
   });
 }
 
+// The tensor at p in its frame (u, v): its triangles' tensors turned into the frame and averaged
+// with their corner areas as weights, summed in p's corner order (the same sums for any thread
+// count). Zero with zero area where p has no proper triangle.
+Tensor2 vertex_tensor(const mesh::VertexTriangles& corners, const std::vector<FaceRecord>& faces,
+                      int p, const Vec3& n, const Vec3& u, const Vec3& v, double& area) {
+  Tensor2 sum;
+  area = 0.0;
+  for (int corner : corners.of(p)) {
+    const FaceRecord& face = faces[corner / 3];
+    const double w = face.area[corner % 3];
+    if (!(w > 0.0)) continue;
+    const Tensor2 s = project(face.efg, Vec3(face.n[0], face.n[1], face.n[2]),
+                              Vec3(face.tu[0], face.tu[1], face.tu[2]), n, u, v);
+    sum.e += w * s.e, sum.f += w * s.f, sum.g += w * s.g;
+    area += w;
+  }
+  if (!(area > 0.0)) return {};
+  const double inv = 1.0 / area;
+  return {sum.e * inv, sum.f * inv, sum.g * inv};
+}
+
 CurvatureField curvature_with(const TriMesh& mesh, const mesh::VertexTriangles& corners, std::vector<Vec3> normals,
                               const CurvatureOptions& options, const Reporter& reporter) {
   if (options.smoothing_passes < 0)
     throw OptionError(fmt::format("smoothing passes must not be negative, got {}", options.smoothing_passes));
   VM_CHECK(normals.size() == mesh.points.size(), "one normal per point");
-  const int np = mesh.num_points(), nt = mesh.num_triangles();
+  const int np = mesh.num_points();
   const std::string task = "computing curvature";
   reporter.progress(task, 0.3);
-
-  std::vector<FaceRecord> faces(nt);
-  tbb::parallel_for(tbb::blocked_range<int>(0, nt, kGrain), [&](const tbb::blocked_range<int>& range) {
-    for (int t = range.begin(); t < range.end(); ++t) faces[t] = face_record(mesh, normals, t);
-  });
-  reporter.progress(task, 0.6);
-
-  // Per vertex, its triangles' tensors in its own frame, summed in its corner order: the same
-  // sums for any thread count.
-  std::vector<Tensor2> tensors(np);
-  std::vector<double> area(np, 0.0);
-  tbb::parallel_for(tbb::blocked_range<int>(0, np, kGrain), [&](const tbb::blocked_range<int>& range) {
-    for (int p = range.begin(); p < range.end(); ++p) {
-      if (normals[p].squaredNorm() == 0.0) continue;
-      Vec3 u, v;
-      tangent_frame(normals[p], u, v);
-      Tensor2 sum;
-      for (int corner : corners.of(p)) {
-        const FaceRecord& face = faces[corner / 3];
-        const double w = face.area[corner % 3];
-        if (!(w > 0.0)) continue;
-        const Tensor2 s = project(face.efg, Vec3(face.n[0], face.n[1], face.n[2]),
-                                  Vec3(face.tu[0], face.tu[1], face.tu[2]), normals[p], u, v);
-        sum.e += w * s.e, sum.f += w * s.f, sum.g += w * s.g;
-        area[p] += w;
-      }
-      if (area[p] > 0.0) tensors[p] = {sum.e / area[p], sum.f / area[p], sum.g / area[p]};
-    }
-  });
-  for (int pass = 0; pass < options.smoothing_passes; ++pass) smooth(mesh, corners, area, normals, tensors);
-  reporter.progress(task, 0.9);
 
   CurvatureField field;
   field.k1.resize(np);
   field.k2.resize(np);
   field.dir1.resize(np);
   field.dir2.resize(np);
+  std::vector<FaceRecord> faces(mesh.triangles.size());
+  tbb::parallel_for(tbb::blocked_range<int>(0, mesh.num_triangles(), kGrain),
+                    [&](const tbb::blocked_range<int>& range) {
+                      for (int t = range.begin(); t < range.end(); ++t)
+                        faces[t] = face_record(mesh, normals, t);
+                    });
+  const bool smoothing = options.smoothing_passes > 0;
+  std::vector<Tensor2> tensors(smoothing ? np : 0);
+  std::vector<double> area(smoothing ? np : 0);
+  // Without smoothing each point's tensor is diagonalized as soon as it is made.
   tbb::parallel_for(tbb::blocked_range<int>(0, np, kGrain), [&](const tbb::blocked_range<int>& range) {
     for (int p = range.begin(); p < range.end(); ++p) {
-      const Vec3 n = normals[p].squaredNorm() > 0.0 ? normals[p] : Vec3::UnitZ();
+      const bool has_normal = normals[p].squaredNorm() > 0.0;
+      const Vec3 n = has_normal ? normals[p] : Vec3::UnitZ();
       Vec3 u, v;
       tangent_frame(n, u, v);
-      diagonalize(tensors[p], n, u, v, field.k1[p], field.k2[p], field.dir1[p], field.dir2[p]);
+      double weight = 0.0;
+      const Tensor2 t = has_normal ? vertex_tensor(corners, faces, p, n, u, v, weight) : Tensor2{};
+      if (smoothing)
+        tensors[p] = t, area[p] = weight;
+      else
+        diagonalize(t, n, u, v, field.k1[p], field.k2[p], field.dir1[p], field.dir2[p]);
     }
   });
+  reporter.progress(task, 0.6);
+  if (smoothing) {
+    for (int pass = 0; pass < options.smoothing_passes; ++pass)
+      smooth(mesh, corners, area, normals, tensors);
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, np, kGrain), [&](const tbb::blocked_range<int>& range) {
+          for (int p = range.begin(); p < range.end(); ++p) {
+            const Vec3 n = normals[p].squaredNorm() > 0.0 ? normals[p] : Vec3::UnitZ();
+            Vec3 u, v;
+            tangent_frame(n, u, v);
+            diagonalize(tensors[p], n, u, v, field.k1[p], field.k2[p], field.dir1[p],
+                        field.dir2[p]);
+          }
+        });
+  }
   field.normal = std::move(normals);
   reporter.progress(task, 1.0);
   return field;

@@ -7,7 +7,10 @@ namespace vesselmesh::analysis {
 
 std::array<double, 3> triangle_corner_areas(const Vec3 e[3]) {
   const double l2[3] = {e[0].squaredNorm(), e[1].squaredNorm(), e[2].squaredNorm()};
-  const double area = 0.5 * e[0].cross(e[1]).norm();
+  return triangle_corner_areas(l2, 0.5 * e[0].cross(e[1]).norm());
+}
+
+std::array<double, 3> triangle_corner_areas(const double l2[3], double area) {
   std::array<double, 3> out{};
   if (!(area > 0.0)) return out;
   // Corner i is obtuse when its opposite edge is longer than the other two together.

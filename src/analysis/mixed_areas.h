@@ -14,6 +14,8 @@ namespace vesselmesh::analysis {
 
 // One triangle, from its edges: e[i] is the edge opposite corner i. Zero areas if degenerate.
 std::array<double, 3> triangle_corner_areas(const Vec3 e[3]);
+// The same from the squared lengths of those edges and the triangle's area.
+std::array<double, 3> triangle_corner_areas(const double l2[3], double area);
 
 // Per triangle, the areas of corners 0, 1, 2 (length unit squared).
 std::vector<std::array<double, 3>> corner_areas(const TriMesh& mesh);

@@ -2,7 +2,7 @@
 //
 // `quadric_fit` (default): in the frame of the Max normal below, a least-squares fit of the
 // height z = a x^2 + b xy + c y^2 + d x + e y through the point to its neighbours (the 1-ring,
-// or the 2-ring where the 1-ring has fewer than six points); the normal is the fitted patch's
+// or the 2-ring where the 1-ring has fewer than five points); the normal is the fitted patch's
 // at the point. Exact for any quadratic patch whatever the triangulation, so its error falls
 // as h^2 on irregular meshes, where every weighted average of face normals stays first order
 // (measured on a jittered torus: 0.064 deg median error with Max weights at h = r/17, halving
