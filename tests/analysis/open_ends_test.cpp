@@ -127,7 +127,9 @@ TEST(OpenEnds, SimVascularCapsSitAtTheirLabelledFaces) {
     const Triangle& f = labelled.mesh.triangles[t];
     const Vec3& a = labelled.mesh.points[f[0]];
     const double w = 0.5 * (labelled.mesh.points[f[1]] - a).cross(labelled.mesh.points[f[2]] - a).norm();
-    weighted[labelled.mesh.labels[t]] += w * (a + labelled.mesh.points[f[1]] + labelled.mesh.points[f[2]]) / 3.0;
+    // try_emplace: a map's Vec3 made by operator[] is not zeroed (Eigen leaves it unset).
+    weighted.try_emplace(labelled.mesh.labels[t], Vec3::Zero()).first->second +=
+        w * (a + labelled.mesh.points[f[1]] + labelled.mesh.points[f[2]]) / 3.0;
     area[labelled.mesh.labels[t]] += w;
   }
   io::SurfaceFile file = io::read_surface(stl, {.units = io::Unit::cm});

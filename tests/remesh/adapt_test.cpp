@@ -225,7 +225,7 @@ TEST(Remesh, TargetCountIsReachedWithinThreePercent) {
 // the identity scaled: its first entry is the scale).
 struct CountingEngine {
   std::function<int(double)> count;
-  mutable std::vector<double> scales;
+  mutable std::vector<double> scales = {};
   RemeshResult operator()(const std::vector<Sym3>& metric) const {
     scales.push_back(metric[0].v[0]);
     RemeshResult r;
