@@ -2,13 +2,17 @@
 // the surface by up to 30 % of the edge length, random diagonals): vesselmesh on one and two
 // threads, with its fitted normals and with the paper's Max normals, against VTK's
 // vtkCurvatures (mean and Gaussian curvature) on the same mesh, in the same run. Each reports
-// its median relative error of the mean curvature H against the exact torus.
+// its median relative error of the mean curvature H against the exact torus. ArraysOnly: the
+// memory floor of vesselmesh's passes (below).
 //   build/bench/bench_curvature            (or bench/curvature.sh for the table)
 #include "analysis/curvature.h"
+#include "mesh/connectivity.h"
 #include "synth/shapes.h"
 
 #include <benchmark/benchmark.h>
+#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
 #include <vtkCellArray.h>
 #include <vtkCurvatures.h>
 #include <vtkDataArray.h>
@@ -67,6 +71,57 @@ void run_vesselmesh(benchmark::State& state, analysis::NormalMethod normals) {
 void BM_Curvature_vesselmesh(benchmark::State& state) { run_vesselmesh(state, analysis::NormalMethod::quadric_fit); }
 void BM_Curvature_vesselmesh_MaxNormals(benchmark::State& state) { run_vesselmesh(state, analysis::NormalMethod::max); }
 
+// The memory floor of vesselmesh's passes: the same arrays allocated, written and read in the
+// same order (the incidence, a normal per point from its fan's points, a 48-byte record per
+// triangle from its points and normals, a pass gathering each point's records into k1, k2, dir1,
+// dir2) with trivial arithmetic. What no arithmetic can save at this interface.
+void BM_Curvature_ArraysOnly(benchmark::State& state) {
+  const TriMesh& m = torus();
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
+                              static_cast<size_t>(state.range(0)));
+  struct Record {
+    float values[12];
+  };
+  const int np = m.num_points(), nt = m.num_triangles();
+  for (auto _ : state) {
+    analysis::CurvatureField f;
+    const mesh::VertexTriangles corners = mesh::build_vertex_corners(m);
+    f.normal.resize(np);
+    tbb::parallel_for(tbb::blocked_range<int>(0, np, 4096), [&](const tbb::blocked_range<int>& range) {
+      for (int v = range.begin(); v < range.end(); ++v) {
+        Vec3 sum = Vec3::Zero();
+        for (int corner : corners.of(v))
+          for (int w : m.triangles[corner / 3]) sum += m.points[w];
+        f.normal[v] = sum;
+      }
+    });
+    std::vector<Record> records(nt);
+    tbb::parallel_for(tbb::blocked_range<int>(0, nt, 4096), [&](const tbb::blocked_range<int>& range) {
+      for (int t = range.begin(); t < range.end(); ++t)
+        for (int i = 0; i < 12; ++i) {
+          const int w = m.triangles[t][i % 3];
+          records[t].values[i] = static_cast<float>(m.points[w][i / 4] + f.normal[w][i / 4]);
+        }
+    });
+    f.k1.resize(np), f.k2.resize(np), f.dir1.resize(np), f.dir2.resize(np);
+    tbb::parallel_for(tbb::blocked_range<int>(0, np, 4096), [&](const tbb::blocked_range<int>& range) {
+      for (int v = range.begin(); v < range.end(); ++v) {
+        double sum = 0.0;
+        for (int corner : corners.of(v))
+          for (float x : records[corner / 3].values) sum += x;
+        f.k1[v] = sum, f.k2[v] = -sum, f.dir1[v] = Vec3(sum, 0, 0), f.dir2[v] = Vec3(0, sum, 0);
+      }
+    });
+    benchmark::DoNotOptimize(f.k1.data());
+    state.PauseTiming();  // freed untimed, as the runs above
+    f = {};
+    state.ResumeTiming();
+  }
+  state.counters["points"] = np;
+  state.counters["threads"] = static_cast<double>(state.range(0));
+  state.counters["H_error_percent"] = -1.0;  // no curvature
+}
+
 void BM_Curvature_vtkCurvatures(benchmark::State& state) {
   const TriMesh& m = torus();
   vtkNew<vtkPoints> points;
@@ -102,6 +157,7 @@ void BM_Curvature_vtkCurvatures(benchmark::State& state) {
 
 BENCHMARK(BM_Curvature_vesselmesh)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->MinTime(3.0)->UseRealTime();
 BENCHMARK(BM_Curvature_vesselmesh_MaxNormals)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->MinTime(3.0)->UseRealTime();
+BENCHMARK(BM_Curvature_ArraysOnly)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->MinTime(3.0)->UseRealTime();
 BENCHMARK(BM_Curvature_vtkCurvatures)->Unit(benchmark::kMillisecond)->MinTime(3.0)->UseRealTime();
 
 }  // namespace
