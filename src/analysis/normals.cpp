@@ -37,9 +37,7 @@ Vec3 weighted_sum(const TriMesh& mesh, const mesh::VertexTriangles& corners, int
         break;
       }
       case NormalMethod::area: sum += cross; break;
-      default:
-        sum += max_term(cross, e1, e2);
-        break;
+      default: sum += max_term(cross, e1, e2); break;
     }
   }
   return sum;
@@ -78,9 +76,9 @@ void gather_ring(const TriMesh& mesh, const mesh::VertexTriangles& corners, int 
 // per point. Lanes do exactly the arithmetic a single solve would, so the result does not depend
 // on a point's neighbours in the batch.
 constexpr int kBatch = 8;
-constexpr int kMaxFan =
-    24;  // triangles per point handled on the stack; larger fans take the general path
-constexpr int kMaxRing = 64;  // neighbours on the stack
+// Triangles per point and neighbours handled on the stack; larger fans take the general path.
+constexpr int kMaxFan = 24;
+constexpr int kMaxRing = 64;
 
 // A point's neighbours as offsets from it, each once, and the sum of their squared lengths.
 struct Ring {
