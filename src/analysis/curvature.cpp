@@ -94,6 +94,15 @@ void tangent_frame(const Vec3& n, Vec3& u, Vec3& v) {
   v = n.cross(u);
 }
 
+// The frame (u, v, n) a point's tensor is written in: its normal, or +z where it has none (then
+// false: its tensor is zero and its directions arbitrary).
+bool point_frame(const Vec3& normal, Vec3& n, Vec3& u, Vec3& v) {
+  const bool has_normal = normal.squaredNorm() > 0.0;
+  n = has_normal ? normal : Vec3::UnitZ();
+  tangent_frame(n, u, v);
+  return has_normal;
+}
+
 // Principal curvatures and directions of (e f; f g) in frame (u, v): the larger eigenvalue's
 // eigenvector is (f, k2 - e) or (k2 - g, f), whichever is longer (both are when f != 0).
 void diagonalize(const Tensor2& t, const Vec3& n, const Vec3& u, const Vec3& v, double& k1, double& k2, Vec3& d1,
@@ -191,10 +200,8 @@ CurvatureField curvature_with(const TriMesh& mesh, const mesh::VertexTriangles& 
   // Without smoothing each point's tensor is diagonalized as soon as it is made.
   tbb::parallel_for(tbb::blocked_range<int>(0, np, kGrain), [&](const tbb::blocked_range<int>& range) {
     for (int p = range.begin(); p < range.end(); ++p) {
-      const bool has_normal = normals[p].squaredNorm() > 0.0;
-      const Vec3 n = has_normal ? normals[p] : Vec3::UnitZ();
-      Vec3 u, v;
-      tangent_frame(n, u, v);
+      Vec3 n, u, v;
+      const bool has_normal = point_frame(normals[p], n, u, v);
       double weight = 0.0;
       const Tensor2 t = has_normal ? vertex_tensor(corners, faces, p, n, u, v, weight) : Tensor2{};
       if (smoothing)
@@ -210,9 +217,8 @@ CurvatureField curvature_with(const TriMesh& mesh, const mesh::VertexTriangles& 
     tbb::parallel_for(
         tbb::blocked_range<int>(0, np, kGrain), [&](const tbb::blocked_range<int>& range) {
           for (int p = range.begin(); p < range.end(); ++p) {
-            const Vec3 n = normals[p].squaredNorm() > 0.0 ? normals[p] : Vec3::UnitZ();
-            Vec3 u, v;
-            tangent_frame(n, u, v);
+            Vec3 n, u, v;
+            point_frame(normals[p], n, u, v);
             diagonalize(tensors[p], n, u, v, field.k1[p], field.k2[p], field.dir1[p],
                         field.dir2[p]);
           }

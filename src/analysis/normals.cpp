@@ -79,6 +79,7 @@ constexpr int kBatch = 8;
 // Triangles per point and neighbours handled on the stack; larger fans take the general path.
 constexpr int kMaxFan = 24;
 constexpr int kMaxRing = 64;
+constexpr int kMinRing = 5;  // fewer neighbours than the fit's unknowns: the 2-ring
 
 // A point's neighbours as offsets from it, each once, and the sum of their squared lengths.
 struct Ring {
@@ -192,7 +193,7 @@ Vec3 fitted_normal(const FitBatch& batch, int lane) {
 
 // The fast path for a point with at most kMaxFan triangles: one sweep of its fan gives the Max
 // normal (its sum, not normalized) and the neighbours. A closed fan's next corners are its ring;
-// otherwise the previous corners not seen are added; under five neighbours, those of the
+// otherwise the previous corners not seen are added; under kMinRing neighbours, those of the
 // neighbours' fans (the 2-ring). False where the stack arrays are too small.
 bool fan_ring(const TriMesh& mesh, const mesh::VertexTriangles& corners, int v, Ring& ring,
               Vec3& max_sum) {
@@ -238,7 +239,7 @@ bool fan_ring(const TriMesh& mesh, const mesh::VertexTriangles& corners, int v, 
       if (prev[i] != v)
         ring.add(prev[i], prev_offset[i].x(), prev_offset[i].y(), prev_offset[i].z());
   }
-  if (ring.n >= 5) return true;
+  if (ring.n >= kMinRing) return true;
   const int first = ring.n;
   for (int i = 0; i < first; ++i)
     for (int corner : corners.of(ring.id[i])) {
@@ -273,7 +274,7 @@ void fit_normals(const TriMesh& mesh, const mesh::VertexTriangles& corners, int 
       if (fan_ring(mesh, corners, v, ring, max_sum)) {
         const Vec3 start = unit_or_zero(max_sum);
         for (int d = 0; d < 3; ++d) batch.frame[d][lane] = start[d];
-        if (ring.n >= 5 && start.squaredNorm() > 0.0)
+        if (ring.n >= kMinRing && start.squaredNorm() > 0.0)
           write_fit(
               start, ring.n, ring.length2,
               [&](int i) { return Vec3(ring.q[i][0], ring.q[i][1], ring.q[i][2]); }, batch, lane);
@@ -282,8 +283,8 @@ void fit_normals(const TriMesh& mesh, const mesh::VertexTriangles& corners, int 
       // A large fan: the general path.
       const Vec3 start = unit_or_zero(weighted_sum(mesh, corners, v, NormalMethod::max));
       for (int d = 0; d < 3; ++d) batch.frame[d][lane] = start[d];
-      gather_ring(mesh, corners, v, 5, stamps.local(), large_ring);
-      if (large_ring.size() < 5 || start.squaredNorm() == 0.0) continue;
+      gather_ring(mesh, corners, v, kMinRing, stamps.local(), large_ring);
+      if (static_cast<int>(large_ring.size()) < kMinRing || start.squaredNorm() == 0.0) continue;
       double length2 = 0.0;
       for (int w : large_ring) length2 += (mesh.points[w] - mesh.points[v]).squaredNorm();
       write_fit(
