@@ -36,8 +36,8 @@ GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& me
 
 namespace volume {
 FillResult gmsh_fill(const std::vector<Vec3>& points, const std::vector<Triangle>& boundary, FillAlgorithm algorithm,
-                     int threads, const Reporter& reporter) {
-  return gmsh_calls().gmsh_fill(points, boundary, algorithm, threads, reporter);
+                     int threads, const Reporter& reporter, const SizeFunction& size) {
+  return gmsh_calls().gmsh_fill(points, boundary, algorithm, threads, reporter, size);
 }
 }  // namespace volume
 

@@ -84,7 +84,11 @@ Command add_volume_command(CLI::App& parent) {
       "volume",
       "Builds the volume mesh of the lumen: --layers prism layers extruded inward from the wall (total thickness "
       "--thickness-ratio x the local radius from the distance map, shrunk smoothly where columns would cross, grown "
-      "where the wall's triangles are too wide for --layer-angle, and reported), each prism cut into three tetrahedra; a planar quality cap on each end; Gmsh's tetrahedra inside. "
+      "where the wall's triangles are too wide for --layer-angle, and reported), each prism cut into three tetrahedra; a planar quality cap on each end; tetrahedra inside "
+      "sized by design whatever the --algorithm: the wall's area-equivalent size (the side of an equilateral triangle of "
+      "its triangles' mean area: sqrt(h1 h2) on an anisotropic wall, so that equal surface counts give comparable "
+      "volumes) carried inward, growing by --interior-gradation from the layer, the core at most a tenth of the local "
+      "radius (never finer than the wall), times --interior-size. "
       "Boundary tags: wall, inlet (the largest end unless --inlet), outlet_1, ... in the order of 'vesselmesh info'. "
       "Give a remeshed surface (vesselmesh remesh): the layer stands on its triangles");
   struct Options {
@@ -121,6 +125,14 @@ Command add_volume_command(CLI::App& parent) {
                   "run after run), or frontal (needs a Gmsh built with Netgen)")
       ->check(CLI::IsMember({"delaunay", "frontal", "hxt", "tetgen"}))
       ->capture_default_str();
+  app->add_option("--interior-size", o->volume.interior.factor,
+                  "Scales the interior's size field (1: the wall's area-equivalent size; 2: edges twice as long, about "
+                  "an eighth of the interior points)")
+      ->capture_default_str();
+  app->add_option("--interior-gradation", o->volume.interior.gradation,
+                  "Growth of the interior's sizes with the depth below the boundary layer: the size grows by ln(g) per "
+                  "unit length, as the surface's gradation (1: the wall's size throughout, up to the core bound)")
+      ->capture_default_str();
   app->add_option("--sliver-angle", o->volume.sliver_angle_deg,
                   "Interior tetrahedra with a dihedral angle under this (degrees) are improved after the fill by flips, "
                   "moves of inside points and insertions (the boundary is kept); 0: the fill as it comes")
@@ -153,11 +165,18 @@ Command add_volume_command(CLI::App& parent) {
               throw InputError(fmt::format("{}: the surface has no open or flat-capped end: a flow domain needs an inlet and "
                                            "an outlet; cut the vessel's ends open",
                                            o->surface.path));
-            // The layer's thickness follows the local radius: the distance map, traced only when
-            // there is a layer.
+            volume::check_interior_size_options(options.interior);
+            // The layer's thickness and the interior's core bound follow the local radius: the
+            // distance map (without a layer, a surface whose centerlines cannot be traced is
+            // filled without the core bound, said).
             std::vector<double> radius;
-            if (options.layer.layers > 0)
+            try {
               radius = centerline::distance_map(wall, centerline::extract(wall, {}, reporter)).radius;
+            } catch (const InputError& e) {
+              if (options.layer.layers > 0) throw;
+              reporter.warning(fmt::format("no centerlines ({}): the interior's core is not bounded by the radius",
+                                           e.what()));
+            }
             const volume::VolumeResult result = volume::build_volume(wall, surface.ends, radius, options, reporter);
             if (format == VolumeFormat::vtu)
               io::write_vtu(o->output, result.mesh, {Field::scalar("radius", result.radius)});
@@ -184,6 +203,13 @@ Command add_volume_command(CLI::App& parent) {
               json["layers"] = r.layers;
               json["layer_cells"] = r.layer_tets + r.layer_prisms;
               json["interior_tetrahedra"] = r.interior_tets;
+              json["interior_points"] = r.interior_points;
+              json["interior_size"] = {{"factor", options.interior.factor},
+                                       {"gradation", options.interior.gradation},
+                                       {"core_fraction", options.interior.core_fraction},
+                                       {"at_wall_mm", {{"min", round_to(r.interior_size_min, 5)},
+                                                       {"median", round_to(r.interior_size_median, 5)},
+                                                       {"max", round_to(r.interior_size_max, 5)}}}};
               json["wall_tag"] = r.wall_tag;
               json["ends"] = ends;
               json["slivers"] = {{"angle_deg", options.sliver_angle_deg},

@@ -29,8 +29,8 @@ inline constexpr const char* kGmshModuleFile = "libvesselmesh-gmsh.so";
 // The module's entry points. `layout` (first: the program's loader reads it there) is
 // kGmshCallsLayout when the module was built with this header: a program and a module of
 // different builds refuse each other. Raise it when this table or a type it passes changes
-// (GmshRemeshOptions grew target_triangles: 1 -> 2).
-inline constexpr int kGmshCallsLayout = 2;
+// (GmshRemeshOptions grew target_triangles: 1 -> 2; gmsh_fill a size function: 2 -> 3).
+inline constexpr int kGmshCallsLayout = 3;
 struct GmshCalls {
   int layout;
   void (*write_surface_msh)(const std::string& path, const TriMesh& mesh, const std::map<int, std::string>& label_names);
@@ -40,7 +40,8 @@ struct GmshCalls {
   remesh::GmshRemeshResult (*reparametrize)(const TriMesh& input, const std::vector<Sym3>& metrics,
                                             const remesh::GmshRemeshOptions& options, const Reporter& reporter);
   volume::FillResult (*gmsh_fill)(const std::vector<Vec3>& points, const std::vector<Triangle>& boundary,
-                                  volume::FillAlgorithm algorithm, int threads, const Reporter& reporter);
+                                  volume::FillAlgorithm algorithm, int threads, const Reporter& reporter,
+                                  const volume::SizeFunction& size);
 };
 
 }  // namespace vesselmesh::io

@@ -44,6 +44,33 @@ GmshSession::~GmshSession() {
   }
 }
 
+ScopedGmshOptions::~ScopedGmshOptions() {
+  if (callback_) {
+    try {
+      gmsh::model::mesh::removeSizeCallback();
+    } catch (...) {
+    }
+  }
+  for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) {
+    try {
+      gmsh::option::setNumber(it->first, it->second);
+    } catch (...) {  // a destructor must not throw; the option keeps its value
+    }
+  }
+}
+
+void ScopedGmshOptions::set(const std::string& name, double value) {
+  double old = 0.0;
+  gmsh::option::getNumber(name, old);
+  saved_.emplace_back(name, old);
+  gmsh::option::setNumber(name, value);
+}
+
+void ScopedGmshOptions::size_callback(std::function<double(int, int, double, double, double)> callback) {
+  gmsh::model::mesh::setSizeCallback(std::move(callback));
+  callback_ = true;
+}
+
 void add_discrete_surface(const TriMesh& mesh) {
   constexpr int kTriangle3 = 2;  // Gmsh's element type of a 3-node triangle
   gmsh::model::addDiscreteEntity(2, 1);

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <unordered_map>
@@ -24,6 +25,23 @@ class GmshSession {
 
  private:
   std::unique_lock<std::mutex> lock_;
+};
+
+// Gmsh's options and size callback outlive a session: the options set through this are put
+// back and the callback (it refers to its caller's field) removed when the scope ends, error or
+// not, so that later Gmsh work in the same process starts from what it expects. Inside a session.
+class ScopedGmshOptions {
+ public:
+  ScopedGmshOptions() = default;
+  ScopedGmshOptions(const ScopedGmshOptions&) = delete;
+  ScopedGmshOptions& operator=(const ScopedGmshOptions&) = delete;
+  ~ScopedGmshOptions();
+  void set(const std::string& name, double value);
+  void size_callback(std::function<double(int, int, double, double, double)> callback);
+
+ private:
+  bool callback_ = false;
+  std::vector<std::pair<std::string, double>> saved_;
 };
 
 // Runs `what` and turns any exception Gmsh throws (it may throw non-std types) into an

@@ -43,44 +43,6 @@ double smallest_size(const Sym3& m) {
   return sizes.minCoeff();
 }
 
-// Gmsh's options and size callback outlive a session: the options set here are put back and the
-// callback (it refers to this call's field) removed when the scope ends, error or not, so that
-// later Gmsh work in the same process (the volume's tetrahedra) starts from what it expects.
-class ScopedOptions {
- public:
-  ScopedOptions() = default;
-  ScopedOptions(const ScopedOptions&) = delete;
-  ScopedOptions& operator=(const ScopedOptions&) = delete;
-  ~ScopedOptions() {
-    if (callback_) {
-      try {
-        gmsh::model::mesh::removeSizeCallback();  // it refers to this call's field
-      } catch (...) {
-      }
-    }
-    for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) {
-      try {
-        gmsh::option::setNumber(it->first, it->second);
-      } catch (...) {  // a destructor must not throw; the option keeps its value
-      }
-    }
-  }
-  void set(const std::string& name, double value) {
-    double old = 0.0;
-    gmsh::option::getNumber(name, old);
-    saved_.emplace_back(name, old);
-    gmsh::option::setNumber(name, value);
-  }
-  void size_callback(std::function<double(int, int, double, double, double)> callback) {
-    gmsh::model::mesh::setSizeCallback(std::move(callback));
-    callback_ = true;
-  }
-
- private:
-  bool callback_ = false;
-  std::vector<std::pair<std::string, double>> saved_;
-};
-
 // The median edge length of a mesh in a metric given at its points.
 double median_edge_length(const TriMesh& mesh, const std::vector<Sym3>& metric) {
   std::vector<double> lengths;
@@ -101,7 +63,7 @@ std::string where(const Vec3& p) { return fmt::format("({:.4g}, {:.4g}, {:.4g})"
 // is the same each time). Lives inside one GmshSession.
 class Patches {
  public:
-  Patches(const TriMesh& input, const GmshRemeshOptions& o, ScopedOptions& options, const Reporter& reporter)
+  Patches(const TriMesh& input, const GmshRemeshOptions& o, io::ScopedGmshOptions& options, const Reporter& reporter)
       : input_(input), o_(o), options_(options), reporter_(reporter) {
     io::call_gmsh("remeshing by Gmsh (reparametrization)", [&] {
       gmsh::model::add("surface");
@@ -257,7 +219,7 @@ class Patches {
 
   const TriMesh& input_;
   const GmshRemeshOptions& o_;
-  ScopedOptions& options_;
+  io::ScopedGmshOptions& options_;
   const Reporter& reporter_;
   gmsh::vectorpair surfaces_;
   int view_ = -1, background_ = -1;  // BAMG's metric view and background field of the last run
@@ -353,7 +315,7 @@ GmshRemeshResult reparametrize(const TriMesh& input, const std::vector<Sym3>& me
   const auto start = std::chrono::steady_clock::now();
   GmshRemeshResult out;
   io::GmshSession session;
-  ScopedOptions options;
+  io::ScopedGmshOptions options;
   Patches patches(input, o, options, reporter);
   out.patches = patches.count();
   // Should Gmsh's edges come out off the size asked, the first run calibrates the sizes handed to

@@ -106,7 +106,8 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
     if (c.factor <= 1.0) r.fail("reference.factor", "must be more than 1 (each level has that many times the triangles)");
   }
   if (const toml::table* t = root["volume"].as_table()) {
-    r.known_keys(*t, "volume", {"layers", "thickness_ratio", "layer_angle", "algorithm", "inlet", "end_names"});
+    r.known_keys(*t, "volume", {"layers", "thickness_ratio", "layer_angle", "algorithm", "inlet", "end_names",
+                                "interior_size", "interior_gradation"});
     const io::TomlView v = root["volume"];
     c.layers = r.integer(v["layers"], "volume.layers", c.layers, 0);
     c.thickness_ratio = r.number(v["thickness_ratio"], "volume.thickness_ratio", c.thickness_ratio);
@@ -118,6 +119,10 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
     } catch (const Error& e) {
       r.fail("volume.algorithm", e.what());
     }
+    c.interior.factor = r.number(v["interior_size"], "volume.interior_size", c.interior.factor);
+    if (!(c.interior.factor > 0.0)) r.fail("volume.interior_size", "give a factor > 0 (1: the wall's size)");
+    c.interior.gradation = r.number(v["interior_gradation"], "volume.interior_gradation", c.interior.gradation);
+    if (!(c.interior.gradation >= 1.0)) r.fail("volume.interior_gradation", "give a growth >= 1 (1: none)");
     c.inlet = r.integer(v["inlet"], "volume.inlet", -1, 0);
     c.end_names = r.strings(v["end_names"], "volume.end_names");
   }
@@ -199,10 +204,12 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
   result.seconds["input analysis"] = since(step);
 
   // What every mesh depends on: the input's bytes, the options, the version.
-  std::string common = fmt::format("vesselmesh {}\n{}\nunits={}\nlayers={} ratio={} layer_angle={} algorithm={} inlet={}\n",
-                                   VESSELMESH_VERSION, fingerprint(io::read_file(config.surface)), config.units,
-                                   config.layers, config.thickness_ratio, config.layer_angle, config.algorithm,
-                                   config.inlet);
+  std::string common = fmt::format(
+      "vesselmesh {}\n{}\nunits={}\nlayers={} ratio={} layer_angle={} algorithm={} inlet={}\ninterior sized by design: "
+      "factor={} gradation={} core={}\n",
+      VESSELMESH_VERSION, fingerprint(io::read_file(config.surface)), config.units, config.layers,
+      config.thickness_ratio, config.layer_angle, config.algorithm, config.inlet, config.interior.factor,
+      config.interior.gradation, config.interior.core_fraction);
   for (const std::string& n : config.end_names) common += n + ",";
   for (const volume::EndAt& e : config.end_at)
     common += fmt::format("\nend {} {} {} {}", e.name, e.point.x(), e.point.y(), e.point.z());
@@ -270,6 +277,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       vo.layer.thickness_ratio = config.thickness_ratio;
       vo.layer.min_angle_deg = config.layer_angle;
       vo.algorithm = volume::parse_fill_algorithm(config.algorithm);
+      vo.interior = config.interior;
       vo.inlet = config.inlet;
       vo.end_names = config.end_names;
       vo.end_at = config.end_at;
@@ -314,6 +322,10 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
     result.meshes.push_back(run);
   }
   result.reference = static_cast<int>(result.meshes.size()) - 1;
+  if (const std::string w = volume_count_warning(result.meshes); !w.empty()) {
+    reporter.warning(w);
+    result.warnings.push_back(w);
+  }
 
   // 6. WSS at the chosen time on the rings and points of every mesh.
   step = Clock::now();
@@ -331,6 +343,22 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
   result.seconds["total before the report"] = since(start);
   write_report(config, result, folder, reporter);
   return result;
+}
+
+std::string volume_count_warning(const std::vector<MeshRun>& meshes) {
+  const MeshRun* least = nullptr;
+  const MeshRun* most = nullptr;
+  for (const MeshRun& m : meshes) {
+    if (m.series) continue;
+    if (!least || m.volume_points < least->volume_points) least = &m;
+    if (!most || m.volume_points > most->volume_points) most = &m;
+  }
+  if (!least || most->volume_points <= 1.05 * least->volume_points) return "";
+  return fmt::format("the compared meshes' volume nodes differ by {:.1f} % ({} for {}, {} for {}): at equal surface "
+                     "counts their interiors are not alike, and the comparison weighs the volume as well as the wall "
+                     "(set [volume] interior_size, or check the layer)",
+                     100.0 * (static_cast<double>(most->volume_points) / least->volume_points - 1.0),
+                     least->volume_points, least->name, most->volume_points, most->name);
 }
 
 }  // namespace vesselmesh::study

@@ -22,7 +22,9 @@
 //   [volume]    layers = 4, thickness_ratio = 0.1, layer_angle = 0 (the paper's layer on every
 //               mesh: a layer thickened for its angles on some meshes only would confound the
 //               comparison; see volume/boundary_layer.h), algorithm = "delaunay", inlet = K,
-//               end_names = ["inlet", "outlet_1", ...]
+//               end_names = ["inlet", "outlet_1", ...], interior_size = 1.0 and
+//               interior_gradation = 1.3 (volume/interior_size.h: the same interior field for
+//               every mesh, so that equal surface counts give comparable volumes)
 //   [post]      time = 0.21 (s; default the last saved)
 //   [[ring]]    name = "ring1", point = [x, y, z], normal = [nx, ny, nz] (omit it: the plane
 //               normal to the centerline nearest the point), reference = [rx, ry, rz] (optional)
@@ -57,6 +59,7 @@ struct StudyConfig {
   double thickness_ratio = 0.1;
   double layer_angle = 0.0;  // degrees: volume::BoundaryLayerOptions::min_angle_deg
   std::string algorithm = "delaunay";
+  volume::InteriorSizeOptions interior;
   int inlet = -1;
   std::vector<std::string> end_names;
   std::vector<volume::EndAt> end_at;
@@ -100,5 +103,9 @@ double relative_difference(double value, double reference);
 
 StudyResult run_study(const StudyConfig& config, const std::string& folder,
                       const Reporter& reporter = silent_reporter());
+
+// The warning when the compared meshes' volume node counts differ by more than 5 % (the least
+// and the most, named), or "" when they do not.
+std::string volume_count_warning(const std::vector<MeshRun>& meshes);
 
 }  // namespace vesselmesh::study

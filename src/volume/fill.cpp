@@ -27,9 +27,9 @@ const char* fill_algorithm_name(FillAlgorithm algorithm) {
 }
 
 FillResult fill_tetrahedra(const std::vector<Vec3>& points, const std::vector<Triangle>& boundary,
-                           FillAlgorithm algorithm, int threads, const Reporter& reporter) {
-  if (algorithm == FillAlgorithm::tetgen) return tetgen_fill(points, boundary, {}, reporter);
-  return gmsh_fill(points, boundary, algorithm, threads, reporter);
+                           FillAlgorithm algorithm, int threads, const Reporter& reporter, const SizeFunction& size) {
+  if (algorithm == FillAlgorithm::tetgen) return tetgen_fill(points, boundary, {}, reporter, size);
+  return gmsh_fill(points, boundary, algorithm, threads, reporter, size);
 }
 
 }  // namespace vesselmesh::volume

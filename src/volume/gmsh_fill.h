@@ -9,6 +9,6 @@
 namespace vesselmesh::volume {
 
 FillResult gmsh_fill(const std::vector<Vec3>& points, const std::vector<Triangle>& boundary, FillAlgorithm algorithm,
-                     int threads, const Reporter& reporter);
+                     int threads, const Reporter& reporter, const SizeFunction& size = {});
 
 }  // namespace vesselmesh::volume

@@ -46,10 +46,39 @@ std::string tetgen_reason(int code) {
   }
 }
 
+// TetGen's refinement callback has no argument of ours: the size function and the factor of the
+// one call under way (TetGen runs on the calling thread).
+thread_local const SizeFunction* g_size = nullptr;
+thread_local double g_circumradius_factor = 1.0;
+
+// True when tetrahedron (a, b, c, d) is larger than the size function asks: its circumradius
+// above the factor times the size at its centroid.
+bool too_large(REAL* a, REAL* b, REAL* c, REAL* d, REAL*, REAL) {
+  const Vec3 pa(a[0], a[1], a[2]), pb(b[0], b[1], b[2]), pc(c[0], c[1], c[2]), pd(d[0], d[1], d[2]);
+  const Vec3 u = pb - pa, v = pc - pa, w = pd - pa;
+  const double det = 2.0 * u.dot(v.cross(w));
+  if (det == 0.0) return false;
+  const Vec3 centre = (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) + w.squaredNorm() * u.cross(v)) / det;
+  const double size = (*g_size)(0.25 * (pa + pb + pc + pd));
+  return centre.norm() > g_circumradius_factor * size;
+}
+
+// Sets the callback's size function for one TetGen run.
+class SizeForTetgen {
+ public:
+  SizeForTetgen(const SizeFunction* size, double factor) {
+    g_size = size;
+    g_circumradius_factor = factor;
+  }
+  ~SizeForTetgen() { g_size = nullptr; }
+  SizeForTetgen(const SizeForTetgen&) = delete;
+  SizeForTetgen& operator=(const SizeForTetgen&) = delete;
+};
+
 }  // namespace
 
 FillResult tetgen_fill(const std::vector<Vec3>& points, const std::vector<Triangle>& boundary,
-                       const TetgenQuality& quality, const Reporter& reporter) {
+                       const TetgenQuality& quality, const Reporter& reporter, const SizeFunction& size) {
   // TetGen's points: those the boundary uses, in index order (others would become vertices of
   // the mesh); `ours` leads back.
   std::vector<int> index_of(points.size(), -1), ours;
@@ -98,11 +127,14 @@ FillResult tetgen_fill(const std::vector<Vec3>& points, const std::vector<Triang
   in.firstnumber = 0;
   in.numberofpoints = n;
   in.pointlist = new REAL[3 * n];
-  in.numberofpointmtrs = 1;
-  in.pointmtrlist = new REAL[n];
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < n; ++i)
     for (int c = 0; c < 3; ++c) in.pointlist[3 * i + c] = closed.points[i][c];
-    in.pointmtrlist[i] = quality.size_factor * edge_sum[i] / edge_count[i];
+  if (!size) {
+    in.numberofpointmtrs = 1;
+    in.pointmtrlist = new REAL[n];
+    for (int i = 0; i < n; ++i) in.pointmtrlist[i] = quality.size_factor * edge_sum[i] / edge_count[i];
+  } else {
+    in.tetunsuitable = too_large;
   }
   in.numberoffacets = static_cast<int>(boundary.size());
   in.facetlist = new tetgenio::facet[boundary.size()];
@@ -120,10 +152,11 @@ FillResult tetgen_fill(const std::vector<Vec3>& points, const std::vector<Triang
   }
 
   // p: a piecewise linear complex; Y: its surface kept; z: numbered from 0; Q: quiet; q: quality
-  // bounds; m: the sizes at the points.
+  // bounds; m: the sizes at the points (without a size function).
   std::string switches =
-      fmt::format("pYzQmq{:g}/{:g}", quality.radius_edge_ratio, quality.min_dihedral_deg);
+      fmt::format("pYzQ{}q{:g}/{:g}", size ? "" : "m", quality.radius_edge_ratio, quality.min_dihedral_deg);
   reporter.progress("interior tetrahedra", 0.0);
+  const SizeForTetgen sizing(size ? &size : nullptr, quality.circumradius_factor);
   try {
     tetgen_entry()(switches.data(), &in, &result, nullptr, nullptr);
   } catch (int code) {

@@ -174,6 +174,7 @@ VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::Op
   if (ends.empty())
     throw InputError("the surface has no ends (no boundary loop and no flat cap): a flow domain needs an inlet "
                      "and an outlet; cut the vessel's ends open or cap them flat");
+  check_interior_size_options(options.interior);
   VolumeResult result;
   VolumeReport& report = result.report;
   assign_tags(ends, options, report);
@@ -255,7 +256,22 @@ VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::Op
                             options.algorithm == FillAlgorithm::tetgen
                                 ? std::string("TetGen")
                                 : fmt::format("Gmsh {}", fill_algorithm_name(options.algorithm))));
-  FillResult fill = fill_tetrahedra(points, closed, options.algorithm, options.threads, reporter);
+  const InteriorSize interior_size(wall.mesh, radius.empty() ? std::vector<double>{} : wall_radius, options.interior,
+                                   layer.thickness);
+  {
+    std::vector<double> at_wall(n);
+    for (int v = 0; v < n; ++v) at_wall[v] = interior_size.at_wall_point(v);
+    std::sort(at_wall.begin(), at_wall.end());
+    report.interior_size_min = at_wall.front();
+    report.interior_size_median = at_wall[n / 2];
+    report.interior_size_max = at_wall.back();
+    reporter.info(fmt::format("interior sizes: {:.3g} mm at the wall (least {:.3g}, largest {:.3g}; x{:g}), growing "
+                              "inward by {:g} to at most {:g} of the local radius",
+                              report.interior_size_median, report.interior_size_min, report.interior_size_max,
+                              options.interior.factor, options.interior.gradation, options.interior.core_fraction));
+  }
+  FillResult fill = fill_tetrahedra(points, closed, options.algorithm, options.threads, reporter,
+                                    [&interior_size](const Vec3& x) { return interior_size.at(x); });
   if (options.sliver_angle_deg > 0.0) {
     reporter.progress("removing slivers", 0.0);
     report.slivers = remove_slivers(fill.points, fill.tets, static_cast<int>(points.size()),
@@ -274,6 +290,7 @@ VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::Op
                                    mesh::format_point(s.worst_at)));
   }
 
+  report.interior_points = static_cast<int>(fill.points.size() - points.size());
   TetMesh& mesh = result.mesh;
   mesh.points = std::move(fill.points);
   if (options.layer.layers > 0) {

@@ -6,8 +6,10 @@
 // ends (flat caps of a closed surface) are cut off and built again like open ends, so every
 // end gets the same layer ending and cap; their tag keeps the cap's label when it has one.
 // Steps: the boundary layer on the wall (boundary_layer.h; none with layers = 0), a cap on
-// each end's inner loop (cap.h), Gmsh's tetrahedra inside the inner surface and the caps
-// (fill.h), each prism cut into three tetrahedra (or kept). Then every cell's volume and the
+// each end's inner loop (cap.h), the tetrahedra inside the inner surface and the caps (fill.h),
+// sized by the interior's own field (interior_size.h: the wall's area-equivalent sizes carried
+// inward and graded, the core bounded by the radius), each prism cut into three tetrahedra (or
+// kept). Then every cell's volume and the
 // boundary's closure are checked: an inverted cell or an open boundary is an error, never an
 // output.
 // Tags: wall, then one per end, named `inlet` (the largest end, or the one chosen) and
@@ -21,6 +23,7 @@
 #include "volume/boundary_layer.h"
 #include "volume/sliver.h"
 #include "volume/fill.h"
+#include "volume/interior_size.h"
 
 #include <string>
 #include <vector>
@@ -37,6 +40,7 @@ struct EndAt {
 struct VolumeOptions {
   BoundaryLayerOptions layer;  // layer.layers = 0: no boundary layer
   FillAlgorithm algorithm = FillAlgorithm::delaunay;  // deterministic; HXT is not run to run
+  InteriorSizeOptions interior;  // the interior's sizes, whatever the engine
   bool keep_prisms = false;
   int inlet = -1;                      // index into the ends; -1: the largest
   std::vector<std::string> end_names;  // in the ends' order; empty: inlet, outlet_1, ...
@@ -65,6 +69,9 @@ struct VolumeEnd {
 struct VolumeReport {
   int layers = 0;
   int layer_tets = 0, layer_prisms = 0, interior_tets = 0;
+  int interior_points = 0;  // points the fill added inside
+  // The interior size field at the wall's points (mm): least, median, largest.
+  double interior_size_min = 0.0, interior_size_median = 0.0, interior_size_max = 0.0;
   int shrunk_vertices = 0;     // wall points whose layer is thinner than asked
   SliverReport slivers;        // the interior's clean-up
   double least_fraction = 1.0;  // of the thickness asked for, and where
@@ -85,7 +92,8 @@ struct VolumeResult {
   std::vector<double> radius;  // per mesh point: the wall radius under it (layer points), else 0
 };
 
-// `radius`: the local radius (distance map) per surface point; may be empty with layers = 0.
+// `radius`: the local radius (distance map) per surface point; may be empty with layers = 0 (then
+// the interior's core is not bounded by the radius).
 VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::OpenEnd>& ends,
                           const std::vector<double>& radius, const VolumeOptions& options,
                           const Reporter& reporter = silent_reporter());

@@ -2,9 +2,14 @@
 
 #include "flow/womersley.h"
 
+#include "analysis/curvature.h"
 #include "analysis/open_ends.h"
+#include "centerline/distance_map.h"
+#include "centerline/extract.h"
 #include "mesh/error.h"
 #include "post/wss.h"
+#include "remesh/adapt.h"
+#include "sizing/size_field.h"
 #include "synth/shapes.h"
 #include "test_support.h"
 #include "volume/volume_mesh.h"
@@ -12,6 +17,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 namespace vesselmesh::flow {
@@ -166,6 +172,85 @@ TEST(NavierStokes, SteadyPoiseuilleOnPureTetrahedra) {
   EXPECT_LT(quadratic.worst, face.worst);
 }
 
+// The interior sized by design (issue 27): a pipe's wall remeshed to the same count with a
+// uniform and an anisotropic field gives the lumen as many points, and the anisotropic mesh's
+// Poiseuille flow is as good as the uniform one's. Before, the fill took its sizes from the
+// wall's edges (the long axial ones of the anisotropic wall): 9.4k interior tetrahedra against
+// 11.8k, the centreline velocity 5 % low and the median WSS error +14.6 % against +2.8 %.
+TriMesh remeshed_pipe(double R, double L, sizing::SizeKind kind, double triangles) {
+  const TriMesh pipe = synth::cylinder({.radius = R, .length = L, .resolution = 0.15});
+  const analysis::CurvatureField curvature = analysis::curvature(pipe);
+  const centerline::DistanceMap distance = centerline::distance_map(pipe, centerline::extract(pipe));
+  const sizing::SizeField field = sizing::make_size_field(pipe, {.kind = kind, .target_triangles = triangles},
+                                                          {.curvature = &curvature, .distance = &distance});
+  remesh::RemeshOptions options;
+  options.input_radius = &distance.radius;
+  return remesh::adapt_to_count(pipe, field.metric, triangles, options).mesh;
+}
+
+TetMesh volume_of(const TriMesh& wall, double R, volume::FillAlgorithm algorithm) {
+  auto ends = analysis::open_ends(wall);
+  volume::VolumeOptions options;
+  options.layer.layers = 4;
+  options.layer.thickness_ratio = 0.1;
+  options.layer.min_angle_deg = 0.0;
+  options.algorithm = algorithm;
+  options.inlet = ends[0].center.z() < ends[1].center.z() ? 0 : 1;
+  return volume::build_volume(wall, ends, std::vector<double>(wall.points.size(), R), options).mesh;
+}
+
+// The median over the wall points of the middle half of the pipe of the relative error of |WSS|
+// against 4 mu Q / (pi R^3) (signed).
+double median_wss_error(const Wall& wall, const std::vector<Vec3>& velocity, double viscosity, double q, double R,
+                        double L) {
+  const double r = R * 1e-3, exact = 4.0 * viscosity * q / (M_PI * r * r * r);
+  const std::vector<Vec3> wss = wall.wss(velocity, viscosity);
+  std::vector<double> errors;
+  for (size_t v = 0; v < wall.surface.mesh.points.size(); ++v) {
+    const double z = wall.surface.mesh.points[v].z();
+    if (z >= 0.25 * L && z <= 0.75 * L) errors.push_back((wss[v].norm() - exact) / exact);
+  }
+  EXPECT_GT(errors.size(), 50u);
+  std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
+  return errors[errors.size() / 2];
+}
+
+TEST(NavierStokes, AnisotropicWallPoiseuilleAsGoodAsUniform) {
+  const double R = 2.0, L = 20.0, Q = 1.0;  // mm, mm, mL/s
+  const double q = Q * 1e-6, peak = 2.0 * q / (M_PI * R * R * 1e-6);
+  const FlowCase fc = pipe_case("steady = true", fmt::format("profile = \"parabolic\"\nflow = {}", Q), "steady.toml");
+  for (volume::FillAlgorithm algorithm : {volume::FillAlgorithm::delaunay, volume::FillAlgorithm::tetgen}) {
+    double error[2] = {0.0, 0.0};
+    int points[2] = {0, 0};
+    const sizing::SizeKind kinds[2] = {sizing::SizeKind::uniform, sizing::SizeKind::anisotropic};
+    for (int k = 0; k < 2; ++k) {
+      const TetMesh mesh = volume_of(remeshed_pipe(R, L, kinds[k], 3000), R, algorithm);
+      NavierStokes ns(mesh, fc);
+      EXPECT_LT(ns.solve_steady().change, 1e-6);
+      const Wall wall(mesh);
+      error[k] = median_wss_error(wall, ns.velocity(), fc.viscosity, q, R, L);
+      points[k] = mesh.num_points();
+      double centre = 0.0;  // the axial velocity at the axis, mid-pipe, over the analytic peak
+      int n = 0;
+      for (int a = 0; a < mesh.num_points(); ++a) {
+        const Vec3& x = mesh.points[a];
+        if (std::hypot(x.x(), x.y()) < 0.2 * R && std::abs(x.z() - L / 2) < 0.25 * L) {
+          const double rr = std::hypot(x.x(), x.y()) / R;
+          centre += ns.velocity()[a].z() / (peak * (1.0 - rr * rr));
+          ++n;
+        }
+      }
+      std::printf("Poiseuille, %s wall, %s fill: %d points, %d tetrahedra, median WSS error %+.2f %%, centre velocity "
+                  "%.3f of the analytic\n",
+                  sizing::size_kind_name(kinds[k]).c_str(), volume::fill_algorithm_name(algorithm), mesh.num_points(),
+                  mesh.num_tets(), 100 * error[k], centre / std::max(n, 1));
+    }
+    EXPECT_LT(error[1], error[0] + 0.005) << volume::fill_algorithm_name(algorithm);
+    EXPECT_LT(std::abs(error[1]), 0.035) << volume::fill_algorithm_name(algorithm);
+    EXPECT_NEAR(points[1], points[0], 0.10 * points[0]) << volume::fill_algorithm_name(algorithm);
+  }
+}
+
 // steady_method = "pseudo-transient": pseudo time steps from Stokes, then a confirming Picard
 // iteration, reach the flow Picard reaches (Re ~ 480 here: 5 mL/s in a 4 mm pipe).
 TEST(NavierStokes, PseudoTransientSteadyReachesPicardsFlow) {
@@ -260,8 +345,11 @@ TEST(NavierStokes, AFailedSolveNamesTheStep) {
 // Womersley flow (issue 8): alpha = 4, a mean flow and one harmonic entering with Womersley's
 // profile, the pipe started from the exact solution; over one cycle the mean wall shear
 // stress in the middle of the pipe against the analytic one, harmonic by harmonic.
-TEST(NavierStokes, WomersleyWallShearOverACycle) {
-  const double R = 2.0, L = 8.0;  // mm
+struct WomersleyErrors {
+  double mean = 0.0, amplitude = 0.0, phase = 0.0;  // relative, relative, radians
+};
+// Per method (quadratic, face), on a pipe of radius R along +z of length L.
+std::array<WomersleyErrors, 2> womersley_errors(const TetMesh& mesh, double R, double L) {
   const double density = 1060.0, viscosity = 0.0035, nu = viscosity / density;
   const double r = R * 1e-3, alpha = 4.0, omega = alpha * alpha * nu / (r * r), period = 2.0 * M_PI / omega;
   const int steps = 80;
@@ -274,7 +362,6 @@ TEST(NavierStokes, WomersleyWallShearOverACycle) {
   test::write_bytes(folder.path("flow.csv"), waveform);
   const FlowCase fc = pipe_case(fmt::format("dt = {}\nend = {}", period / steps, period),
                                 "profile = \"womersley\"\nwaveform = \"flow.csv\"\nharmonics = 6", folder.path("case.toml"));
-  const TetMesh mesh = pipe_volume(R, L, 0.3);
   NavierStokes ns(mesh, fc);
   const Womersley exact = Womersley::from_waveform(fc.boundaries[0].flow, 6, r, nu);
   std::vector<Vec3> start(mesh.points.size(), Vec3::Zero());
@@ -312,20 +399,31 @@ TEST(NavierStokes, WomersleyWallShearOverACycle) {
       analytic[n] += exact.wall_shear_stress(t, viscosity) * std::exp(Complex(0.0, -n * omega * t)) *
                      (n == 0 ? 1.0 : 2.0) / static_cast<double>(steps);
   }
+  std::array<WomersleyErrors, 2> errors;
   for (int m = 0; m < 2; ++m) {
     const Complex* c = computed[m];
-    const double mean_error = std::abs(c[0].real() - analytic[0].real()) / analytic[0].real();
-    const double amplitude_error = std::abs(std::abs(c[1]) - std::abs(analytic[1])) / std::abs(analytic[1]);
-    const double phase_error = std::abs(std::arg(c[1] / analytic[1]));
-    std::printf("Womersley alpha %.2f: %d dofs, %d steps, WSS (%s) mean %.4f Pa (exact %.4f, %.2f %%), first harmonic "
-                "%.4f Pa (exact %.4f, %.2f %%), phase %.2f deg off (%.2f %% of the cycle); %.3f s and %.1f linear "
-                "iterations a step\n",
-                exact.alpha(), ns.dofs(), steps, post::to_string(methods[m]), c[0].real(), analytic[0].real(),
-                100 * mean_error, std::abs(c[1]), std::abs(analytic[1]), 100 * amplitude_error,
-                phase_error * 180 / M_PI, 100 * phase_error / (2 * M_PI), seconds / steps, double(iterations) / steps);
-    EXPECT_LT(mean_error, 0.03) << post::to_string(methods[m]);
-    EXPECT_LT(amplitude_error, 0.03) << post::to_string(methods[m]);
-    EXPECT_LT(phase_error, 0.03 * 2.0 * M_PI) << post::to_string(methods[m]);
+    WomersleyErrors& e = errors[m];
+    e.mean = std::abs(c[0].real() - analytic[0].real()) / analytic[0].real();
+    e.amplitude = std::abs(std::abs(c[1]) - std::abs(analytic[1])) / std::abs(analytic[1]);
+    e.phase = std::abs(std::arg(c[1] / analytic[1]));
+    std::printf("Womersley alpha %.2f: %d points, %d dofs, %d steps, WSS (%s) mean %.4f Pa (exact %.4f, %.2f %%), first "
+                "harmonic %.4f Pa (exact %.4f, %.2f %%), phase %.2f deg off (%.2f %% of the cycle); %.3f s and %.1f "
+                "linear iterations a step\n",
+                exact.alpha(), mesh.num_points(), ns.dofs(), steps, post::to_string(methods[m]), c[0].real(),
+                analytic[0].real(), 100 * e.mean, std::abs(c[1]), std::abs(analytic[1]), 100 * e.amplitude,
+                e.phase * 180 / M_PI, 100 * e.phase / (2 * M_PI), seconds / steps, double(iterations) / steps);
+  }
+  return errors;
+}
+
+TEST(NavierStokes, WomersleyWallShearOverACycle) {
+  const double R = 2.0, L = 8.0;  // mm
+  const auto errors = womersley_errors(pipe_volume(R, L, 0.3), R, L);
+  for (int m = 0; m < 2; ++m) {
+    const char* method = m == 0 ? "quadratic" : "face";
+    EXPECT_LT(errors[m].mean, 0.03) << method;
+    EXPECT_LT(errors[m].amplitude, 0.03) << method;
+    EXPECT_LT(errors[m].phase, 0.03 * 2.0 * M_PI) << method;
   }
 }
 

@@ -58,6 +58,8 @@ thickness_ratio = 0.15
 layer_angle = 5
 algorithm = "hxt"
 end_names = ["in", "a", "b"]
+interior_size = 0.8
+interior_gradation = 1.1
 [post]
 time = 0.21
 [[ring]]
@@ -83,6 +85,8 @@ point = [0, 3, 0]
   EXPECT_DOUBLE_EQ(c.thickness_ratio, 0.15);
   EXPECT_DOUBLE_EQ(c.layer_angle, 5.0);
   EXPECT_EQ(c.algorithm, "hxt");
+  EXPECT_DOUBLE_EQ(c.interior.factor, 0.8);
+  EXPECT_DOUBLE_EQ(c.interior.gradation, 1.1);
   EXPECT_EQ(c.end_names, (std::vector<std::string>{"in", "a", "b"}));
   ASSERT_TRUE(c.time.has_value());
   EXPECT_DOUBLE_EQ(*c.time, 0.21);
@@ -111,6 +115,9 @@ TEST(StudyFile, NamesTheKeyOfEveryMistake) {
   EXPECT_NE(error(study_text("[reference]\nfactor = 1.0\n" + ring)).find("reference.factor"), std::string::npos);
   EXPECT_NE(error(study_text("[volume]\nalgorithm = \"magic\"\n" + ring)).find("volume.algorithm"), std::string::npos);
   EXPECT_NE(error(study_text("[volume]\nlayer_angle = 45\n" + ring)).find("volume.layer_angle"), std::string::npos);
+  EXPECT_NE(error(study_text("[volume]\ninterior_size = 0\n" + ring)).find("volume.interior_size"), std::string::npos);
+  EXPECT_NE(error(study_text("[volume]\ninterior_gradation = 0.5\n" + ring)).find("volume.interior_gradation"),
+            std::string::npos);
   EXPECT_DOUBLE_EQ(parse_study(study_text(ring), "s.toml").layer_angle, 0.0);  // the paper's layer by default
   EXPECT_NE(error(study_text("[[ring]]\nname = \"a b\"\npoint = [0, 0, 0]\n")).find("ring[0].name"), std::string::npos);
   EXPECT_NE(error(study_text("[[ring]]\nname = \"r\"\npoint = [0, 0]\n")).find("ring[0].point: expected three"),
@@ -131,6 +138,20 @@ TEST(StudyFile, NamesTheKeyOfEveryMistake) {
   EXPECT_TRUE(std::isnan(relative_difference(1.0, 0.0)));
   EXPECT_NEAR(relative_difference(1.1, 1.0), 10.0, 1e-9);
   EXPECT_NEAR(relative_difference(-0.9, -1.0), 10.0, 1e-9);  // against |reference|
+}
+
+// Table 1's warning: the compared meshes' volume nodes more than 5 % apart (the series left out).
+TEST(Study, WarnsWhenTheComparedVolumesDiffer) {
+  std::vector<MeshRun> runs(4);
+  runs[0] = {.name = "uniform", .volume_points = 10000};
+  runs[1] = {.name = "anisotropic", .volume_points = 10400};
+  runs[2] = {.name = "level_1", .series = true, .volume_points = 30000};
+  EXPECT_EQ(volume_count_warning(runs), "");
+  runs[3] = {.name = "curvature", .volume_points = 10600};
+  const std::string w = volume_count_warning(runs);
+  EXPECT_NE(w.find("6.0 %"), std::string::npos) << w;
+  EXPECT_NE(w.find("10000 for uniform"), std::string::npos) << w;
+  EXPECT_NE(w.find("10600 for curvature"), std::string::npos) << w;
 }
 
 TEST(Study, ARingMissingTheVesselStopsBeforeAnyMesh) {

@@ -1,0 +1,87 @@
+#include "volume/interior_size.h"
+
+#include "mesh/error.h"
+#include "mesh/geometry.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace vesselmesh::volume {
+namespace {
+
+// Barycentric coordinates of p (a point of triangle abc) against its corners.
+std::array<double, 3> barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 n = (b - a).cross(c - a);
+  const double area2 = n.squaredNorm();
+  if (!(area2 > 0.0)) return {1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0};
+  const double wa = (c - b).cross(p - b).dot(n) / area2;
+  const double wb = (a - c).cross(p - c).dot(n) / area2;
+  return {wa, wb, 1.0 - wa - wb};
+}
+
+}  // namespace
+
+void check_interior_size_options(const InteriorSizeOptions& o) {
+  if (!(o.factor > 0.0 && std::isfinite(o.factor)))
+    throw OptionError(fmt::format("--interior-size {}: give a factor > 0 (1: the wall's area-equivalent size)", o.factor));
+  if (!(o.gradation >= 1.0 && std::isfinite(o.gradation)))
+    throw OptionError(fmt::format("--interior-gradation {}: give a growth >= 1 (1: no growth inward)", o.gradation));
+  if (!(o.core_fraction > 0.0 && std::isfinite(o.core_fraction)))
+    throw OptionError(fmt::format("the interior's core fraction {} must be > 0", o.core_fraction));
+}
+
+std::vector<double> area_equivalent_sizes(const TriMesh& mesh) {
+  std::vector<double> area(mesh.points.size(), 0.0);
+  std::vector<int> count(mesh.points.size(), 0);
+  for (int t = 0; t < mesh.num_triangles(); ++t) {
+    const double a = mesh::triangle_area(mesh, t);
+    for (int v : mesh.triangles[t]) {
+      area[v] += a;
+      count[v] += 1;
+    }
+  }
+  const double scale = 4.0 / std::sqrt(3.0);
+  std::vector<double> size(mesh.points.size(), 0.0);
+  for (size_t v = 0; v < size.size(); ++v)
+    if (count[v] > 0) size[v] = std::sqrt(scale * area[v] / count[v]);
+  return size;
+}
+
+InteriorSize::InteriorSize(const TriMesh& wall, const std::vector<double>& radius, const InteriorSizeOptions& options,
+                           const std::vector<double>& layer)
+    : wall_(wall),
+      size_(area_equivalent_sizes(wall)),
+      radius_(radius),
+      layer_(layer),
+      options_(options),
+      slope_(std::log(options.gradation)),
+      locator_(wall) {
+  check_interior_size_options(options);
+  VM_CHECK(radius.empty() || radius.size() == wall.points.size(), "InteriorSize: one radius per wall point");
+  VM_CHECK(layer.empty() || layer.size() == wall.points.size(), "InteriorSize: one layer thickness per wall point");
+  if (wall.triangles.empty()) throw InputError("the interior's size field needs the wall's triangles");
+}
+
+double InteriorSize::at(const Vec3& x) const {
+  const mesh::SurfaceLocator::Hit hit = locator_.closest(x);
+  const Triangle& f = wall_.triangles[hit.triangle];
+  const auto w = barycentric(hit.point, wall_.points[f[0]], wall_.points[f[1]], wall_.points[f[2]]);
+  double h = 0.0, r = 0.0, t = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double wk = std::clamp(w[k], 0.0, 1.0);
+    h += wk * size_[f[k]];
+    if (!radius_.empty()) r += wk * radius_[f[k]];
+    if (!layer_.empty()) t += wk * layer_[f[k]];
+  }
+  const double sum = std::clamp(w[0], 0.0, 1.0) + std::clamp(w[1], 0.0, 1.0) + std::clamp(w[2], 0.0, 1.0);
+  h /= sum;
+  r /= sum;
+  t /= sum;
+  double size = h + slope_ * std::max(0.0, hit.distance - t);
+  if (!radius_.empty()) size = std::min(size, std::max(h, options_.core_fraction * r));
+  return options_.factor * size;
+}
+
+}  // namespace vesselmesh::volume
