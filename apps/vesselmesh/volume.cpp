@@ -119,6 +119,13 @@ Command add_volume_command(CLI::App& parent) {
                   "(degrees); 0: the thickness asked, whatever the angles")
       ->check(CLI::Range(0.0, 30.0))
       ->capture_default_str();
+  app->add_option("--layer-split-angle", o->volume.layer.split_angle_deg,
+                  "Wall triangles whose layer tetrahedra stay under this dihedral angle (degrees) once the layer is "
+                  "built (a thin layer over stretched triangles, as on an anisotropic wall) have their longest edge "
+                  "halved, and the layer is built again: the wall gains points (reported), keeps its shape and the "
+                  "layer its thickness; 0: the wall's triangles as given")
+      ->check(CLI::Range(0.0, 30.0))
+      ->capture_default_str();
   app->add_option("--algorithm", o->algorithm,
                   "Interior tetrahedra: delaunay (Gmsh's; the same mesh run after run), hxt (Gmsh's HXT: threaded, "
                   "fewer slivers, but not the same mesh twice), tetgen (TetGen 1.5: quality-bounded, the same mesh "
@@ -230,6 +237,7 @@ Command add_volume_command(CLI::App& parent) {
                                  {"most_at", to_json(r.most_at)},
                                  {"under_angle_prisms", r.under_angle_prisms},
                                  {"least_layer_angle_deg", round_to(r.least_layer_angle, 4)}};
+              json["split"] = {{"angle_deg", options.layer.split_angle_deg}, {"wall_edges", r.split_edges}};
               json["seconds"] = round_to(seconds, 4);
               print_json(json);
             } else {

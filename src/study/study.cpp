@@ -106,13 +106,16 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
     if (c.factor <= 1.0) r.fail("reference.factor", "must be more than 1 (each level has that many times the triangles)");
   }
   if (const toml::table* t = root["volume"].as_table()) {
-    r.known_keys(*t, "volume", {"layers", "thickness_ratio", "layer_angle", "algorithm", "inlet", "end_names",
-                                "interior_size", "interior_gradation"});
+    r.known_keys(*t, "volume", {"layers", "thickness_ratio", "layer_angle", "layer_split_angle", "algorithm",
+                                "inlet", "end_names", "interior_size", "interior_gradation"});
     const io::TomlView v = root["volume"];
     c.layers = r.integer(v["layers"], "volume.layers", c.layers, 0);
     c.thickness_ratio = r.number(v["thickness_ratio"], "volume.thickness_ratio", c.thickness_ratio);
     c.layer_angle = r.number(v["layer_angle"], "volume.layer_angle", c.layer_angle);
     if (!(c.layer_angle >= 0.0 && c.layer_angle <= 30.0)) r.fail("volume.layer_angle", "give 0 to 30 degrees");
+    c.layer_split_angle = r.number(v["layer_split_angle"], "volume.layer_split_angle", c.layer_split_angle);
+    if (!(c.layer_split_angle >= 0.0 && c.layer_split_angle <= 30.0))
+      r.fail("volume.layer_split_angle", "give 0 to 30 degrees (0: the wall's triangles as meshed)");
     c.algorithm = r.text(v["algorithm"], "volume.algorithm", c.algorithm);
     try {
       volume::parse_fill_algorithm(c.algorithm);
@@ -205,11 +208,11 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
 
   // What every mesh depends on: the input's bytes, the options, the version.
   std::string common = fmt::format(
-      "vesselmesh {}\n{}\nunits={}\nlayers={} ratio={} layer_angle={} algorithm={} inlet={}\ninterior sized by design: "
-      "factor={} gradation={} core={}\n",
+      "vesselmesh {}\n{}\nunits={}\nlayers={} ratio={} layer_angle={} split_angle={} algorithm={} inlet={}\n"
+      "interior sized by design: factor={} gradation={} core={}\n",
       VESSELMESH_VERSION, fingerprint(io::read_file(config.surface)), config.units, config.layers,
-      config.thickness_ratio, config.layer_angle, config.algorithm, config.inlet, config.interior.factor,
-      config.interior.gradation, config.interior.core_fraction);
+      config.thickness_ratio, config.layer_angle, config.layer_split_angle, config.algorithm, config.inlet,
+      config.interior.factor, config.interior.gradation, config.interior.core_fraction);
   for (const std::string& n : config.end_names) common += n + ",";
   for (const volume::EndAt& e : config.end_at)
     common += fmt::format("\nend {} {} {} {}", e.name, e.point.x(), e.point.y(), e.point.z());
@@ -276,6 +279,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       vo.layer.layers = config.layers;
       vo.layer.thickness_ratio = config.thickness_ratio;
       vo.layer.min_angle_deg = config.layer_angle;
+      vo.layer.split_angle_deg = config.layer_split_angle;
       vo.algorithm = volume::parse_fill_algorithm(config.algorithm);
       vo.interior = config.interior;
       vo.inlet = config.inlet;

@@ -29,6 +29,8 @@ void check_options(const BoundaryLayerOptions& o) {
     throw OptionError("the least thickness fraction must be in (0, 1)");
   if (!(o.min_angle_deg >= 0.0 && o.min_angle_deg <= 30.0))
     throw OptionError(fmt::format("--layer-angle {}: give an angle in [0, 30] degrees (0: no thickening)", o.min_angle_deg));
+  if (!(o.split_angle_deg >= 0.0 && o.split_angle_deg <= 30.0))
+    throw OptionError(fmt::format("--layer-split-angle {}: give an angle in [0, 30] degrees (0: no splits)", o.split_angle_deg));
 }
 
 // Per wall point: the unit normal of its end's plane for loop points, zero elsewhere.
@@ -96,6 +98,53 @@ std::vector<double> angle_floors(const TriMesh& wall, const std::vector<Vec3>& d
 }
 
 }  // namespace
+
+int split_long_edges(TriMesh& wall, std::vector<double>& radius, const std::vector<int>& triangles) {
+  const mesh::EdgeMap edges = mesh::build_edge_map(wall);
+  // The edges wanted, the longest first (ties by index, so the order of `triangles` is moot).
+  std::vector<std::pair<double, int>> wanted;
+  for (int t : triangles) {
+    const Triangle& f = wall.triangles[t];
+    int best = -1;
+    double longest = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const int e = edges.triangle_edges[t][i];
+      if (e < 0 || edges.valence(e) != 2) continue;  // an end's loop (or a non-manifold edge) stays
+      const double length = (wall.points[f[(i + 1) % 3]] - wall.points[f[i]]).norm();
+      if (length > longest) longest = length, best = e;
+    }
+    if (best >= 0) wanted.emplace_back(-longest, best);
+  }
+  std::sort(wanted.begin(), wanted.end());
+  wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+  std::vector<int> split_at(wall.triangles.size(), -1);  // per triangle: the edge it splits
+  int count = 0;
+  for (const auto& [length, e] : wanted) {
+    const auto faces = edges.triangles_of(e);
+    if (split_at[faces[0]] >= 0 || split_at[faces[1]] >= 0) continue;
+    split_at[faces[0]] = split_at[faces[1]] = e;
+    ++count;
+  }
+  std::vector<int> midpoint(edges.edges.size(), -1);
+  const size_t before = wall.triangles.size();
+  for (size_t t = 0; t < before; ++t) {
+    const int e = split_at[t];
+    if (e < 0) continue;
+    const auto [a, b] = edges.edges[e];
+    if (midpoint[e] < 0) {
+      midpoint[e] = wall.num_points();
+      wall.points.push_back(0.5 * (wall.points[a] + wall.points[b]));
+      radius.push_back(0.5 * (radius[a] + radius[b]));
+    }
+    const Triangle f = wall.triangles[t];
+    int i = 0;  // f[i] -> f[i + 1] is the edge
+    while (!((f[i] == a && f[(i + 1) % 3] == b) || (f[i] == b && f[(i + 1) % 3] == a))) ++i;
+    const int p = f[i], q = f[(i + 1) % 3], r = f[(i + 2) % 3], m = midpoint[e];
+    wall.triangles[t] = {p, m, r};
+    wall.triangles.push_back({m, q, r});
+  }
+  return count;
+}
 
 std::vector<double> layer_fractions(int layers, double growth) {
   std::vector<double> f(layers + 1, 0.0);
@@ -312,7 +361,9 @@ BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double
     if (kept > 1.001) ++out.thickened_vertices;
     if (kept > out.most_fraction) out.most_fraction = kept, out.most_at = wall.points[v];
   }
+  out.column_angle.assign(wall.triangles.size(), 180.0);
   for (size_t p = 0; p < angle.size(); ++p) {
+    out.column_angle[p / layers] = std::min(out.column_angle[p / layers], angle[p]);
     if (angle[p] < out.least_angle)
       out.least_angle = angle[p], out.least_angle_at = wall.points[wall.triangles[p / layers][0]];
     if (options.min_angle_deg > 0.0 && angle[p] < options.min_angle_deg) ++out.under_angle_prisms;

@@ -43,6 +43,12 @@ struct BoundaryLayerOptions {
   // The layer's tetrahedra keep this least dihedral angle (degrees) where the thickness may grow
   // for it (see above); 0: the thickness asked for, whatever the angles.
   double min_angle_deg = 5.0;
+  // Wall triangles whose columns' tetrahedra stay under this angle (degrees) once the layer is
+  // built (thin layers over stretched triangles: a prism of height h over a triangle of largest
+  // altitude a has tetrahedra of about atan(h / a), whatever its cut) have their longest inner
+  // edge halved and the layer is built again (split_long_edges; build_volume does it); the
+  // thickness stays as asked. 0: the wall's triangles as given.
+  double split_angle_deg = 5.0;
 };
 
 // An open end of the wall: its boundary loop (wall vertex indices, in the direction of the
@@ -83,6 +89,8 @@ struct BoundaryLayer {
   double least_angle = 180.0;
   Vec3 least_angle_at = Vec3::Zero();
   int under_angle_prisms = 0;
+  // Per wall triangle: the least dihedral angle (degrees) of its column's tetrahedra.
+  std::vector<double> column_angle;
 };
 
 // `wall`: outward-oriented, manifold, its boundary loops exactly the `ends`; `radius` per wall
@@ -90,6 +98,13 @@ struct BoundaryLayer {
 BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double>& radius,
                                    const std::vector<WallEnd>& ends, const BoundaryLayerOptions& options,
                                    const Reporter& reporter = silent_reporter());
+
+// Halves the longest inner edge (not on an end's loop) of each of `triangles` (wall triangle
+// indices): the midpoint is appended to the wall's points (its radius the mean of the edge's),
+// the two triangles beside the edge become four, oriented as they were; a triangle gets at most
+// one split a call (longest edges first, so the result does not depend on the list's order).
+// Returns the number of edges split. The wall keeps its shape and its ends' loops.
+int split_long_edges(TriMesh& wall, std::vector<double>& radius, const std::vector<int>& triangles);
 
 // Level heights as fractions of the thickness: levels + 1 values from 0 to 1.
 std::vector<double> layer_fractions(int layers, double growth);

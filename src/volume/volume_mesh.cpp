@@ -178,10 +178,9 @@ VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::Op
   VolumeResult result;
   VolumeReport& report = result.report;
   assign_tags(ends, options, report);
-  const Wall wall = extract_wall(surface, ends);
-  const int n = wall.mesh.num_points();
-  std::vector<double> wall_radius(n);
-  for (int v = 0; v < n && !radius.empty(); ++v) wall_radius[v] = radius[wall.old_of[v]];
+  Wall wall = extract_wall(surface, ends);
+  std::vector<double> wall_radius(wall.mesh.num_points());
+  for (size_t v = 0; v < wall_radius.size() && !radius.empty(); ++v) wall_radius[v] = radius[wall.old_of[v]];
 
   // Layer (or the wall itself) and the inner loops the caps close.
   std::vector<Vec3> points;
@@ -192,7 +191,24 @@ VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::Op
   report.layers = options.layer.layers;
   if (options.layer.layers > 0) {
     reporter.progress("boundary layer", 0.0);
-    layer = build_boundary_layer(wall.mesh, wall_radius, wall.ends, options.layer, reporter);
+    // Columns still under the split angle once built (thin layers over stretched triangles)
+    // have their triangle's long edge halved, and the layer is built again.
+    constexpr int kSplitPasses = 3;
+    const double split_angle = options.layer.split_angle_deg;
+    for (int pass = 0;; ++pass) {
+      layer = build_boundary_layer(wall.mesh, wall_radius, wall.ends, options.layer, reporter);
+      if (!(split_angle > 0.0) || pass == kSplitPasses) break;
+      std::vector<int> under;
+      for (size_t t = 0; t < layer.column_angle.size(); ++t)
+        if (layer.column_angle[t] < split_angle) under.push_back(static_cast<int>(t));
+      if (under.empty()) break;
+      const int split = split_long_edges(wall.mesh, wall_radius, under);
+      if (split == 0) break;
+      report.split_edges += split;
+      reporter.info(fmt::format("boundary layer: {} wall triangles under {} degrees (least {:.2f}): {} long edges "
+                                "halved, the layer built again",
+                                under.size(), split_angle, layer.least_angle, split));
+    }
     reporter.progress("boundary layer", 1.0);
     points = layer.points;
     inner = layer.inner;
@@ -207,20 +223,20 @@ VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::Op
     report.under_angle_prisms = layer.under_angle_prisms;
     report.least_layer_angle = layer.least_angle;
     report.min_thickness_ratio = 1e300;
-    for (int v = 0; v < n; ++v) {
+    for (int v = 0; v < wall.mesh.num_points(); ++v) {
       const double ratio = layer.thickness[v] / wall_radius[v];
       report.min_thickness_ratio = std::min(report.min_thickness_ratio, ratio);
       report.max_thickness_ratio = std::max(report.max_thickness_ratio, ratio);
     }
     if (layer.shrunk_vertices > 0)
       reporter.warning(fmt::format("boundary layer thinner than asked at {} of {} wall points (down to {:.0f} % near {})",
-                                   layer.shrunk_vertices, n, 100.0 * layer.least_fraction,
+                                   layer.shrunk_vertices, wall.mesh.num_points(), 100.0 * layer.least_fraction,
                                    mesh::format_point(layer.least_at)));
     if (layer.thickened_vertices > 0)
       reporter.info(fmt::format("boundary layer thicker than asked at {} of {} wall points (up to {:.2f} times near {}): "
                                 "the wall's triangles are large there against the thinnest layer, whose "
                                 "tetrahedra would fall under {} degrees (--layer-angle 0 keeps the thickness asked)",
-                                layer.thickened_vertices, n, layer.most_fraction, mesh::format_point(layer.most_at),
+                                layer.thickened_vertices, wall.mesh.num_points(), layer.most_fraction, mesh::format_point(layer.most_at),
                                 options.layer.min_angle_deg));
     if (layer.under_angle_prisms > 0)
       reporter.warning(fmt::format("{} of {} layer prisms have tetrahedra under {} degrees (least {:.2f} near {}): "
@@ -233,6 +249,8 @@ VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::Op
     inner = wall.mesh.triangles;
     for (const WallEnd& end : wall.ends) inner_loops.push_back(end.loop);
   }
+
+  const int n = wall.mesh.num_points();  // the wall's points, with those the splits added
 
   // Caps on the inner loops.
   std::vector<std::vector<Triangle>> caps(ends.size());

@@ -80,6 +80,7 @@ struct VolumeReport {
   double most_fraction = 1.0;        // of the thickness asked for, and where
   Vec3 most_at = Vec3::Zero();
   int under_angle_prisms = 0;        // layer prisms whose tetrahedra stay under the angle asked
+  int split_edges = 0;               // wall edges halved for the layer's angles (split_angle_deg)
   double least_layer_angle = 180.0;  // degrees, over the layer's tetrahedra
   double min_thickness_ratio = 0.0, max_thickness_ratio = 0.0;  // layer thickness / local radius
   std::vector<VolumeEnd> ends;

@@ -194,6 +194,7 @@ TetMesh volume_of(const TriMesh& wall, double R, volume::FillAlgorithm algorithm
   options.layer.layers = 4;
   options.layer.thickness_ratio = 0.1;
   options.layer.min_angle_deg = 0.0;
+  options.layer.split_angle_deg = 0.0;  // the wall as remeshed: the test is of the interior's sizes
   options.algorithm = algorithm;
   options.inlet = ends[0].center.z() < ends[1].center.z() ? 0 : 1;
   return volume::build_volume(wall, ends, std::vector<double>(wall.points.size(), R), options).mesh;
@@ -424,6 +425,31 @@ TEST(NavierStokes, WomersleyWallShearOverACycle) {
     EXPECT_LT(errors[m].mean, 0.03) << method;
     EXPECT_LT(errors[m].amplitude, 0.03) << method;
     EXPECT_LT(errors[m].phase, 0.03 * 2.0 * M_PI) << method;
+  }
+}
+
+// Issue 27: on the Womersley pipe (alpha 4, L = 20 mm, the walls of 3000 triangles of the
+// Poiseuille test), the anisotropic wall's WSS over a cycle no worse than the uniform wall's:
+// mean and first harmonic within 0.5 points, phase within 0.5 degrees, both recoveries. With
+// TetGen's fill (measured: quadratic 1.53 / 0.64 % / 1.71 deg uniform, 1.71 / 0.95 % / 0.33 deg
+// anisotropic; face 0.76 / 1.39 / 1.70 and 0.60 / 1.37 / 1.55). Gmsh's Delaunay fill is not
+// there yet on this wall: 1.54 / 0.48 / 1.54 against 2.23 / 1.85 / 0.05 (quadratic); the exact
+// field's recovery is better on the anisotropic wall (0.40 % against 1.24 %), the velocity is
+// not: its error is twice the uniform mesh's just over the layer (0.60 % against 0.31 % of the
+// peak at r/R 0.8-0.9), where Delaunay's tetrahedra stand on the layer's stretched top.
+TEST(NavierStokes, AnisotropicWallWomersleyAsGoodAsUniform) {
+  const double R = 2.0, L = 20.0;  // mm
+  std::array<WomersleyErrors, 2> errors[2];
+  const sizing::SizeKind kinds[2] = {sizing::SizeKind::uniform, sizing::SizeKind::anisotropic};
+  for (int k = 0; k < 2; ++k)
+    errors[k] = womersley_errors(volume_of(remeshed_pipe(R, L, kinds[k], 3000), R, volume::FillAlgorithm::tetgen), R, L);
+  for (int m = 0; m < 2; ++m) {
+    const char* method = m == 0 ? "quadratic" : "face";
+    EXPECT_LT(errors[1][m].mean, errors[0][m].mean + 0.005) << method;
+    EXPECT_LT(errors[1][m].amplitude, errors[0][m].amplitude + 0.005) << method;
+    EXPECT_LT(errors[1][m].phase, errors[0][m].phase + 0.5 * M_PI / 180.0) << method;
+    EXPECT_LT(errors[1][m].mean, 0.03) << method;
+    EXPECT_LT(errors[1][m].amplitude, 0.03) << method;
   }
 }
 

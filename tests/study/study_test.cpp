@@ -56,6 +56,7 @@ factor = 1.5
 layers = 2
 thickness_ratio = 0.15
 layer_angle = 5
+layer_split_angle = 4
 algorithm = "hxt"
 end_names = ["in", "a", "b"]
 interior_size = 0.8
@@ -84,6 +85,7 @@ point = [0, 3, 0]
   EXPECT_EQ(c.layers, 2);
   EXPECT_DOUBLE_EQ(c.thickness_ratio, 0.15);
   EXPECT_DOUBLE_EQ(c.layer_angle, 5.0);
+  EXPECT_DOUBLE_EQ(c.layer_split_angle, 4.0);
   EXPECT_EQ(c.algorithm, "hxt");
   EXPECT_DOUBLE_EQ(c.interior.factor, 0.8);
   EXPECT_DOUBLE_EQ(c.interior.gradation, 1.1);
@@ -118,7 +120,10 @@ TEST(StudyFile, NamesTheKeyOfEveryMistake) {
   EXPECT_NE(error(study_text("[volume]\ninterior_size = 0\n" + ring)).find("volume.interior_size"), std::string::npos);
   EXPECT_NE(error(study_text("[volume]\ninterior_gradation = 0.5\n" + ring)).find("volume.interior_gradation"),
             std::string::npos);
+  EXPECT_NE(error(study_text("[volume]\nlayer_split_angle = -1\n" + ring)).find("volume.layer_split_angle"),
+            std::string::npos);
   EXPECT_DOUBLE_EQ(parse_study(study_text(ring), "s.toml").layer_angle, 0.0);  // the paper's layer by default
+  EXPECT_DOUBLE_EQ(parse_study(study_text(ring), "s.toml").layer_split_angle, 0.0);  // and its wall as meshed
   EXPECT_NE(error(study_text("[[ring]]\nname = \"a b\"\npoint = [0, 0, 0]\n")).find("ring[0].name"), std::string::npos);
   EXPECT_NE(error(study_text("[[ring]]\nname = \"r\"\npoint = [0, 0]\n")).find("ring[0].point: expected three"),
             std::string::npos);

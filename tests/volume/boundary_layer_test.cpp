@@ -1,12 +1,14 @@
 #include "volume/boundary_layer.h"
 
 #include "analysis/open_ends.h"
+#include "mesh/connectivity.h"
 #include "mesh/error.h"
 #include "synth/shapes.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 #include <numbers>
 
 namespace vesselmesh::volume {
@@ -166,9 +168,53 @@ TEST(BoundaryLayer, RejectsBadOptions) {
   EXPECT_THROW(build_boundary_layer(p.wall, radius, p.ends, {.thickness_ratio = 0.8}), OptionError);
   EXPECT_THROW(build_boundary_layer(p.wall, radius, p.ends, {.growth = 0.0}), OptionError);
   EXPECT_THROW(build_boundary_layer(p.wall, radius, p.ends, {.min_angle_deg = -1.0}), OptionError);
+  EXPECT_THROW(build_boundary_layer(p.wall, radius, p.ends, {.split_angle_deg = 31.0}), OptionError);
   std::vector<double> missing = radius;
   missing[7] = 0.0;
   EXPECT_THROW(build_boundary_layer(p.wall, missing, p.ends, {}), InputError);
+}
+
+TEST(SplitLongEdges, HalvesEachLongEdgeOnceKeepingTheShapeTheEndsAndTheOrientation) {
+  Pipe p = pipe(3.0, 20.0, 0.8);
+  const int points = p.wall.num_points(), triangles = p.wall.num_triangles();
+  auto area = [](const TriMesh& m) {
+    double a = 0.0;
+    for (const Triangle& f : m.triangles)
+      a += 0.5 * (m.points[f[1]] - m.points[f[0]]).cross(m.points[f[2]] - m.points[f[0]]).norm();
+    return a;
+  };
+  const double area_before = area(p.wall);
+  const auto loops_before = mesh::boundary_loops(p.wall, mesh::build_edge_map(p.wall));
+  std::vector<double> radius(points);
+  for (int v = 0; v < points; ++v) radius[v] = 2.0 + p.wall.points[v].z() / 20.0;
+  std::vector<int> all(triangles);
+  for (int t = 0; t < triangles; ++t) all[t] = t;
+  const int split = split_long_edges(p.wall, radius, all);
+  // Every triangle asked, each split at most once: a triangle and its neighbour share a split.
+  EXPECT_GT(split, triangles / 4);
+  EXPECT_LE(2 * split, triangles);
+  EXPECT_EQ(p.wall.num_points(), points + split);
+  EXPECT_EQ(p.wall.num_triangles(), triangles + 2 * split);
+  ASSERT_EQ(static_cast<int>(radius.size()), p.wall.num_points());
+  for (int v = points; v < p.wall.num_points(); ++v)  // linear in z: the mean is exact at the midpoint
+    EXPECT_NEAR(radius[v], 2.0 + p.wall.points[v].z() / 20.0, 1e-12);
+  EXPECT_NEAR(area(p.wall), area_before, 1e-9 * area_before);
+  // The ends' loops as they were; every directed edge once (oriented, manifold).
+  const mesh::EdgeMap edges = mesh::build_edge_map(p.wall);
+  EXPECT_EQ(mesh::boundary_loops(p.wall, edges), loops_before);
+  std::set<std::pair<int, int>> directed;
+  for (const Triangle& f : p.wall.triangles)
+    for (int i = 0; i < 3; ++i) EXPECT_TRUE(directed.insert({f[i], f[(i + 1) % 3]}).second);
+  for (int e = 0; e < edges.num_edges(); ++e) EXPECT_LE(edges.valence(e), 2);
+  // Nothing asked, nothing split; the same list in another order, the same mesh.
+  Pipe q = pipe(3.0, 20.0, 0.8), r = pipe(3.0, 20.0, 0.8);
+  std::vector<double> rq(points, 3.0), rr(points, 3.0);
+  EXPECT_EQ(split_long_edges(q.wall, rq, {}), 0);
+  EXPECT_EQ(q.wall.num_triangles(), triangles);
+  const std::vector<int> reversed(all.rbegin(), all.rend());
+  split_long_edges(q.wall, rq, all);
+  split_long_edges(r.wall, rr, reversed);
+  EXPECT_EQ(q.wall.triangles, r.wall.triangles);
 }
 
 }  // namespace

@@ -83,6 +83,33 @@ TEST(Volume, PipeWithFourLayers) {
   EXPECT_NEAR(std::abs(inlet.z() - outlet.z()), 20.0, 1e-9);
 }
 
+// A thin layer over stretched wall triangles (an anisotropic wall: edges four times longer
+// along the pipe than around it) keeps the thickness asked (--layer-angle 0) and reaches the
+// split angle by halving the long edges of the columns under it.
+TEST(Volume, StretchedWallTrianglesAreSplitForTheLayersAngle) {
+  TriMesh pipe = synth::cylinder({.radius = 3.0, .length = 5.0, .resolution = 0.4, .jitter = 0.1});
+  for (Vec3& x : pipe.points) x.z() *= 4.0;
+  const auto ends = analysis::open_ends(pipe);
+  const std::vector<double> radius(pipe.points.size(), 3.0);
+  VolumeOptions options;
+  options.layer.min_angle_deg = 0.0;
+  options.layer.split_angle_deg = 0.0;
+  const VolumeResult as_given = build_volume(pipe, ends, radius, options);
+  EXPECT_EQ(as_given.report.split_edges, 0);
+  EXPECT_LT(measure_volume(as_given.mesh, as_given.radius).min_dihedral_layer, 5.0);
+
+  options.layer.split_angle_deg = 5.0;
+  const VolumeResult r = build_volume(pipe, ends, radius, options);
+  EXPECT_GT(r.report.split_edges, 0);
+  const VolumeQuality q = measure_volume(r.mesh, r.radius);
+  EXPECT_GE(q.min_dihedral_layer, 5.0);
+  EXPECT_NEAR(r.report.least_layer_angle, q.min_dihedral_layer, 1e-6);
+  EXPECT_EQ(q.triangles_per_tag.at("wall"), pipe.num_triangles() + 2 * r.report.split_edges);
+  EXPECT_NEAR(r.report.min_thickness_ratio, 0.1, 1e-12);  // the thickness asked, everywhere
+  EXPECT_NEAR(r.report.max_thickness_ratio, 0.1, 1e-12);
+  expect_sound(r, 4);
+}
+
 TEST(Volume, PrismsKeptGeometricGrowthAndNoLayer) {
   const TriMesh pipe = synth::cylinder({.radius = 2.0, .length = 10.0, .resolution = 0.35, .jitter = 0.1});
   const auto ends = analysis::open_ends(pipe);
