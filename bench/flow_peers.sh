@@ -30,7 +30,9 @@ mkdir -p "$out"
 out=$(cd "$out" && pwd)
 vm=$(cd "$(dirname "$vm")" && pwd)/vesselmesh
 tool=$(cd "$(dirname "$tool")" && pwd)/bench_flow_peers
-radius=2 length=20 flow_ml=1 density=1060 viscosity=0.0035 dt=0.001
+radius=2 length=20 flow_ml=1 density=1060 viscosity=0.0035 dt=0.001  # as bench/pipe_case.sh
+# shellcheck source=bench/pipe_case.sh
+source "$(dirname "$0")/pipe_case.sh"
 end=$(python3 -c "print($steps * $dt)")
 z0=$(python3 -c "print($length / 4)") z1=$(python3 -c "print(3 * $length / 4)")
 export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
@@ -64,29 +66,7 @@ export WSS_EXACT=$exact
 echo "pipe R $radius mm (meshed cross-section: R = $radius_eff mm), L $length mm; Poiseuille WSS $exact Pa"
 
 echo "== vesselmesh simulate"
-cat >"$out/case.toml" <<EOF
-mesh = "pipe.msh"
-length_unit = "mm"
-[fluid]
-density = $density
-viscosity = $viscosity
-[time]
-dt = $dt
-end = $end
-save_every = $steps
-initial = "stokes"
-[[boundary]]
-tag = "inlet"
-type = "velocity"
-profile = "parabolic"
-flow = $flow_ml
-[[boundary]]
-tag = "outlet_1"
-type = "traction"
-[[boundary]]
-tag = "wall"
-type = "wall"
-EOF
+write_pipe_case "$out/case.toml" "$dt" "$end" "$steps"
 ours() {  # ours NAME NP
   local dir="$out/$1"
   if [[ $2 == 1 ]]; then

@@ -87,6 +87,9 @@ int run_action(const Action& action, const std::string& command) {
   } catch (const ComputationError& e) {
     fmt::print(stderr, "vesselmesh {}: error: {}\n", command, e.what());
     return 1;
+  } catch (const StoppedError& e) {
+    fmt::print(stderr, "vesselmesh {}: {}\n", command, e.what());
+    return 128 + e.signal();
   } catch (const std::bad_alloc&) {
     fmt::print(stderr, "vesselmesh {}: error: out of memory\n", command);
     return 1;

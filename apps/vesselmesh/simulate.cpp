@@ -17,10 +17,13 @@ Command add_simulate_command(CLI::App& parent) {
       "'vesselmesh volume', as a TOML case file describes it (mesh, length_unit, [fluid], [time], one [[boundary]] "
       "per mesh tag: velocity | traction | resistance | wall, [solver] petsc_options; see examples/). Writes "
       "DIR/fluid.pvd (velocity m/s, pressure Pa), DIR/wall.pvd (wss, wss_magnitude in Pa), DIR/log.csv and "
-      "DIR/summary.json. The mesh's unit is scaled to SI (the scale is logged and written). Under "
-      "'mpirun -np K' the rows are shared among the K processes");
+      "DIR/summary.json. The mesh's unit is scaled to SI (the scale is logged and written). An unsteady run "
+      "writes DIR/checkpoint.bin every [output] checkpoint_every steps (default save_every), at its end and when "
+      "SIGTERM or SIGINT stops it (after the step under way; exit code 128 + the signal); --restart goes on from "
+      "it. Under 'mpirun -np K' the rows are shared among the K processes");
   struct Options {
     std::string case_file, output, petsc_options;
+    bool restart = false;
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
@@ -28,12 +31,16 @@ Command add_simulate_command(CLI::App& parent) {
   app->add_option("-o,--output", o->output, "Output folder (created if absent)")->required();
   app->add_option("--petsc-options", o->petsc_options,
                   "PETSc options applied after the case's [solver] petsc_options, e.g. \"-ksp_monitor\"");
+  app->add_flag("--restart", o->restart,
+               "Go on from DIR/checkpoint.bin (the same mesh and time step; a later [time] end extends the run), as "
+               "if the run had not stopped");
   add_common_options(*app, o->common);
   return {app, [o] {
             const bool first = flow::process_rank() == 0;  // under mpirun, the first process speaks
             TerminalReporter reporter(o->common.quiet || !first);
             const flow::FlowCase fc = flow::read_case(o->case_file);
-            const flow::SimulationSummary s = flow::simulate(fc, o->output, o->petsc_options, reporter);
+            const flow::SimulationSummary s = flow::simulate(fc, o->output, o->petsc_options, reporter, o->restart);
+            if (s.status == "stopped") return 128 + s.signal;
             if (!first) return 0;
             reporter.info(fmt::format("{} {} steps, {} dofs, {} linear iterations, {:.3g} s per step, {:.1f} s in all; "
                                       "results in {}",

@@ -214,7 +214,8 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
 
   const io::TomlView output = root["output"];
   if (output && !output.is_table()) r.fail("output", "expected a table [output]");
-  if (output) r.known_keys(*output.as_table(), "output", {"wss_method"});
+  if (output) r.known_keys(*output.as_table(), "output", {"wss_method", "checkpoint_every"});
+  c.checkpoint_every = r.integer(output["checkpoint_every"], "output.checkpoint_every", c.save_every, 0);
   c.wss_method = r.text(output["wss_method"], "output.wss_method", c.wss_method);
   try {
     post::parse_wss_method(c.wss_method);

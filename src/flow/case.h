@@ -21,7 +21,9 @@
 // stabilization coefficient, default 1); [solver] reuse_preconditioner = true | false (time steps
 // keep the linear solver's preconditioner while it serves, LinearSolver::reuse_preconditioner;
 // default true); [output] wss_method = "quadratic" | "face" (how the
-// wall shear stress is taken from the velocity, post/wss.h; default quadratic).
+// wall shear stress is taken from the velocity, post/wss.h; default quadratic), checkpoint_every
+// = N (unsteady runs: a checkpoint, flow/checkpoint.h, every N steps, default save_every; 0:
+// only at the last step and when SIGTERM or SIGINT stops the run).
 // A positive flow enters the domain, a negative one leaves it.
 #pragma once
 
@@ -82,6 +84,7 @@ struct FlowCase {
   std::string petsc_options;
   bool reuse_preconditioner = true;  // [solver]: time steps keep the preconditioner while it serves
   std::string wss_method = "quadratic";  // post::parse_wss_method
+  int checkpoint_every = 10;             // [output]: steps (default save_every); 0: at the end, on a signal
 };
 
 std::string to_string(BoundaryType type);

@@ -65,6 +65,13 @@ int process_rank() {
   return rank;
 }
 
+bool any_process(bool flag) {
+  ensure_petsc();
+  int mine = flag ? 1 : 0, any = 0;
+  MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+  return any != 0;
+}
+
 struct LinearSolver::Impl {
   SparsePattern pattern;
   int block_size = 1;

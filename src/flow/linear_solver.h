@@ -49,22 +49,29 @@ inline std::string saddle_point_options() {
          "-fieldsplit_p_pc_hypre_boomeramg_coarsen_type HMIS -fieldsplit_p_pc_hypre_boomeramg_interp_type ext+i "
          "-fieldsplit_p_pc_hypre_boomeramg_strong_threshold 0.6";
 }
-// Time steps, whose mass term makes the system diagonally stronger: below
-// kTimeStepSplitUnknowns unknowns, GMRES with block-Jacobi ILU(0) of the whole system (ILU(0)
-// on one process), relative tolerance 1e-6; from there on the field split above. ILU's
-// iterations grow with the mesh, the split's do not. Measured, per step: 48k unknowns 0.27 s
-// (32 iterations) against 0.56 s (17) with the split; 185k: 2.1 s (56) against 2.4 s (11); 490k
-// (the FDA nozzle): ILU not converged in 1000 iterations, the split 16 s (30).
-constexpr long long kTimeStepSplitUnknowns = 200000;
-inline std::string time_step_options(long long unknowns) {
-  if (unknowns >= kTimeStepSplitUnknowns) return saddle_point_options();
-  return "-ksp_type gmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 100 -pc_type bjacobi -sub_pc_type ilu";
+// Time steps, whose mass term makes the velocity block diagonally strong: the same Schur
+// field split, its velocity block by SOR (PETSc's: local to each process under MPI), which
+// costs less to build and apply than ILU and needs as few iterations here. Measured on the
+// pipe (R 2, L 20 mm, 4 layers; bench/flow_scaling.sh), seconds a step per million unknowns
+// and iterations: 36k unknowns 2.9 (4-9), 86k 3.2, 220k 3.6, 420k 3.7 (3-8); the ILU of the
+// whole system it replaces took 6.4-7.4 and 12-57 iterations below 200k (its iterations grow
+// with the mesh), the split with ILU on the velocity 4.0 at 420k.
+inline std::string time_step_options() {
+  return "-ksp_type fgmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 200 "
+         "-pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full "
+         "-pc_fieldsplit_schur_precondition selfp "
+         "-fieldsplit_u_ksp_type preonly -fieldsplit_u_pc_type sor "
+         "-fieldsplit_p_ksp_type preonly -fieldsplit_p_pc_type hypre -fieldsplit_p_pc_hypre_type boomeramg "
+         "-fieldsplit_p_pc_hypre_boomeramg_coarsen_type HMIS -fieldsplit_p_pc_hypre_boomeramg_interp_type ext+i "
+         "-fieldsplit_p_pc_hypre_boomeramg_strong_threshold 0.6";
 }
 
 // The number of MPI processes this program runs on and this one's rank (start PETSc and MPI
 // when needed).
 int process_count();
 int process_rank();
+// Whether `flag` is true on any process (every process calls it; one process: the flag).
+bool any_process(bool flag);
 
 class LinearSolver {
  public:

@@ -2,6 +2,7 @@
 
 #include "flow/womersley.h"
 #include "mesh/error.h"
+#include "mesh/reorder.h"
 
 #include <fmt/format.h>
 
@@ -63,6 +64,17 @@ struct NavierStokes::Impl {
   std::vector<char> fixed;  // per dof: Dirichlet
   std::unique_ptr<LinearSolver> solver;
 
+  // The solver's own numbering of the points (mesh::cuthill_mckee_order: neighbours near each
+  // other in memory, and each process's consecutive range a compact piece of the lumen):
+  // mesh_point[k] is the mesh's number of point k; everything inside is in this numbering, the
+  // public interface in the mesh's.
+  std::vector<int> mesh_point;
+  std::vector<Vec3> u_mesh;  // u in the mesh's numbering (velocity())
+  void publish() {
+    u_mesh.resize(u.size());
+    for (size_t k = 0; k < u.size(); ++k) u_mesh[mesh_point[k]] = u[k];
+  }
+
   // State.
   double t = 0.0;
   int step_count = 0;
@@ -119,9 +131,10 @@ void NavierStokes::Impl::build(const TetMesh& mesh) {
     double v6 = 0.0;
     gradients[e] = mesh::barycentric_gradients(points[t4[0]], points[t4[1]], points[t4[2]], points[t4[3]], v6);
     if (!(v6 > 0.0))
-      throw InputError(fmt::format("{}: tetrahedron {} is inverted or flat (six times its volume {:.3g} m3, at "
-                                   "({:.4g}, {:.4g}, {:.4g}) in mesh units): mend the mesh first",
-                                   fc.mesh, e, v6, mesh.points[t4[0]].x(), mesh.points[t4[0]].y(),
+      throw InputError(fmt::format("{}: the tetrahedron of points {}, {}, {}, {} is inverted or flat (six times its "
+                                   "volume {:.3g} m3, at ({:.4g}, {:.4g}, {:.4g}) in mesh units): mend the mesh first",
+                                   fc.mesh, mesh_point[t4[0]], mesh_point[t4[1]], mesh_point[t4[2]],
+                                   mesh_point[t4[3]], v6, mesh.points[t4[0]].x(), mesh.points[t4[0]].y(),
                                    mesh.points[t4[0]].z()));
     volumes[e] = v6 / 6.0;
     double largest = 0.0;
@@ -441,7 +454,7 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
 
 void NavierStokes::Impl::solve_system(StepReport& report, const std::string& where) {
   if (!solver) {
-    solver = std::make_unique<LinearSolver>(pattern, kBlock, fc.steady ? saddle_point_options() : time_step_options(pattern.total_rows()),
+    solver = std::make_unique<LinearSolver>(pattern, kBlock, fc.steady ? saddle_point_options() : time_step_options(),
                                             fc.petsc_options);
     solver->reuse_preconditioner(!fc.steady && fc.reuse_preconditioner);
   }
@@ -484,11 +497,16 @@ NavierStokes::NavierStokes(const TetMesh& mesh, const FlowCase& flow_case, const
   s.fc = flow_case;
   s.reporter = &reporter;
   s.nu = flow_case.viscosity / flow_case.density;
-  s.build(mesh);
-  s.build_boundaries(mesh);
+  {
+    s.mesh_point = mesh::cuthill_mckee_order(mesh);
+    const TetMesh ordered = mesh::renumbered(mesh, s.mesh_point);
+    s.build(ordered);
+    s.build_boundaries(ordered);
+  }
   s.u.assign(s.n(), Vec3::Zero());
   s.u_old = s.u;
   s.p.assign(s.n(), 0.0);
+  s.publish();
 }
 
 NavierStokes::~NavierStokes() = default;
@@ -528,6 +546,7 @@ StepReport NavierStokes::step() {
   s.p = std::move(next_p);
   s.t = t_next;
   s.step_count += 1;
+  s.publish();
   report.seconds = seconds_since(start);
   s.check_finite(report);
   return report;
@@ -555,6 +574,7 @@ StepReport NavierStokes::solve_steady() {
     const std::string what = pseudo_dt > 0.0 ? "pseudo time step" : "Picard iteration";
     s.solve_system(report, fmt::format("steady {} {}", what, iteration + 1));
     report.change = s.take_solution(s.u, s.p);
+    s.publish();
     report.step = iteration + 1;
     s.check_finite(report);
     s.reporter->info(fmt::format("steady iteration {} ({}{}): velocity change {:.3e}, {} linear iterations",
@@ -618,6 +638,7 @@ StepReport NavierStokes::start_from_stokes() {
   s.solve_system(report, fmt::format("the Stokes start (t = {:.6g} s)", s.t));
   s.solver->rebuild_preconditioner();  // the time steps' system has a mass term
   report.change = s.take_solution(s.u, s.p);
+  s.publish();
   s.u_old = s.u;
   s.step_count = 0;
   report.time = s.t;
@@ -630,20 +651,52 @@ void NavierStokes::set_state(const std::vector<Vec3>& velocity, double time) {
   Impl& s = *impl_;
   if (velocity.size() != s.u.size())
     throw InputError(fmt::format("initial velocity: {} values for {} points", velocity.size(), s.u.size()));
-  s.u = velocity;
-  s.u_old = velocity;
+  for (int k = 0; k < s.n(); ++k) s.u[k] = velocity[s.mesh_point[k]];
+  s.u_old = s.u;
+  s.publish();
   s.t = time;
   s.step_count = 0;
+}
+
+FlowState NavierStokes::state() const {
+  const Impl& s = *impl_;
+  FlowState out;
+  out.time = s.t;
+  out.steps = s.step_count;
+  out.velocity.resize(s.n());
+  out.previous.resize(s.n());
+  out.kinematic_pressure.resize(s.n());
+  for (int k = 0; k < s.n(); ++k) {
+    out.velocity[s.mesh_point[k]] = s.u[k];
+    out.previous[s.mesh_point[k]] = s.u_old[k];
+    out.kinematic_pressure[s.mesh_point[k]] = s.p[k];
+  }
+  return out;
+}
+
+void NavierStokes::restore(const FlowState& state) {
+  Impl& s = *impl_;
+  const size_t n = s.u.size();
+  if (state.velocity.size() != n || state.previous.size() != n || state.kinematic_pressure.size() != n)
+    throw InputError(fmt::format("the saved state has {} points, the mesh {}", state.velocity.size(), n));
+  for (size_t k = 0; k < n; ++k) {
+    s.u[k] = state.velocity[s.mesh_point[k]];
+    s.u_old[k] = state.previous[s.mesh_point[k]];
+    s.p[k] = state.kinematic_pressure[s.mesh_point[k]];
+  }
+  s.t = state.time;
+  s.step_count = state.steps;
+  s.publish();
 }
 
 double NavierStokes::time() const { return impl_->t; }
 int NavierStokes::steps() const { return impl_->step_count; }
 int NavierStokes::dofs() const { return impl_->pattern.total_rows(); }
-const std::vector<Vec3>& NavierStokes::velocity() const { return impl_->u; }
+const std::vector<Vec3>& NavierStokes::velocity() const { return impl_->u_mesh; }
 
 std::vector<double> NavierStokes::pressure() const {
   std::vector<double> out(impl_->p.size());
-  for (size_t i = 0; i < out.size(); ++i) out[i] = impl_->p[i] * impl_->fc.density;
+  for (size_t k = 0; k < out.size(); ++k) out[impl_->mesh_point[k]] = impl_->p[k] * impl_->fc.density;
   return out;
 }
 

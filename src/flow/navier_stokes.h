@@ -18,6 +18,9 @@
 // (beta/2 |min(u.n, 0)| u, Moghadam et al. 2011); `resistance` a traction -R Q n with the
 // outflow Q of the last step. Dirichlet rows carry the diagonal the element matrices gave them.
 // Without a traction or resistance boundary the pressure is fixed to 0 at one point.
+// Inside, the points are renumbered (mesh::cuthill_mckee_order: a narrow band, so that the
+// assembly and the solver touch nearby memory, and each MPI process's consecutive range of rows
+// is a compact piece of the lumen); every argument and result is in the mesh's numbering.
 #pragma once
 
 #include "flow/case.h"
@@ -36,6 +39,16 @@ struct BoundaryFlow {
   double flux = 0.0;           // m3/s through the boundary, positive out of the domain
   double mean_pressure = 0.0;  // Pa, area-weighted
   double area = 0.0;           // m2
+};
+
+// What the time stepping needs to go on (a checkpoint): per mesh point the velocity at the last
+// two steps (m/s) and the pressure over the density (m2/s2, as the solver holds it), the time
+// (s) and the steps taken (the first step is BDF1).
+struct FlowState {
+  double time = 0.0;
+  int steps = 0;
+  std::vector<Vec3> velocity, previous;
+  std::vector<double> kinematic_pressure;
 };
 
 struct StepReport {
@@ -74,6 +87,9 @@ class NavierStokes {
 
   // Starts the time stepping from this velocity (m/s per point) at this time (s).
   void set_state(const std::vector<Vec3>& velocity, double time);
+  // The whole state, and the stepping resumed from one (InputError when its sizes do not fit).
+  FlowState state() const;
+  void restore(const FlowState& state);
 
   double time() const;
   int steps() const;

@@ -7,6 +7,7 @@ extern "C" __attribute__((visibility("default"))) const vesselmesh::flow::PetscC
       kPetscCallsLayout,
       &process_count,
       &process_rank,
+      &any_process,
       [](SparsePattern pattern, int block_size, const std::string& defaults, const std::string& options) {
         return new LinearSolver(std::move(pattern), block_size, defaults, options);
       },

@@ -13,11 +13,12 @@ inline constexpr const char* kPetscModuleFile = "libvesselmesh-petsc.so";
 
 // The module's entry points: a LinearSolver made, used and destroyed inside the module; `layout`
 // first, as in io/gmsh_module.h (raise it when this table or a type it passes changes).
-inline constexpr int kPetscCallsLayout = 1;
+inline constexpr int kPetscCallsLayout = 2;
 struct PetscCalls {
   int layout;
   int (*process_count)();
   int (*process_rank)();
+  bool (*any_process)(bool flag);
   LinearSolver* (*create)(SparsePattern pattern, int block_size, const std::string& defaults,
                           const std::string& options);
   void (*destroy)(LinearSolver* solver);

@@ -1,5 +1,6 @@
 #include "flow/simulate.h"
 
+#include "flow/checkpoint.h"
 #include "flow/linear_solver.h"
 #include "flow/navier_stokes.h"
 #include "io/atomic_file.h"
@@ -13,12 +14,38 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <csignal>
 #include <filesystem>
 
 namespace vesselmesh::flow {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// SIGTERM / SIGINT during the time steps: the number of the signal, acted on after the step under
+// way (a checkpoint, then the run ends).
+volatile std::sig_atomic_t stop_signal = 0;
+extern "C" void note_stop_signal(int signal) { stop_signal = signal; }
+
+// The handlers while it lives, the program's before and after.
+class StopSignals {
+ public:
+  StopSignals() {
+    stop_signal = 0;
+    term_ = std::signal(SIGTERM, note_stop_signal);
+    interrupt_ = std::signal(SIGINT, note_stop_signal);
+  }
+  ~StopSignals() {
+    std::signal(SIGTERM, term_);
+    std::signal(SIGINT, interrupt_);
+  }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+
+ private:
+  void (*term_)(int) = SIG_DFL;
+  void (*interrupt_)(int) = SIG_DFL;
+};
 
 TetMesh read_mesh(const FlowCase& c) {
   const std::string ext = std::filesystem::path(c.mesh).extension().string();
@@ -42,7 +69,7 @@ std::string pvd(const std::vector<std::pair<double, std::string>>& files, const 
 }  // namespace
 
 SimulationSummary simulate(const FlowCase& input_case, const std::string& output_dir,
-                           const std::string& extra_petsc_options, const Reporter& all_reporter) {
+                           const std::string& extra_petsc_options, const Reporter& all_reporter, bool restart) {
   const auto start = Clock::now();
   // Under mpirun every process reads the mesh and assembles its own rows; the first writes.
   const int ranks = process_count();
@@ -94,6 +121,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     if (!writer) return;
     nlohmann::ordered_json j;
     j["status"] = summary.status;
+    if (summary.signal != 0) j["signal"] = summary.signal;
     j["case"] = fc.path;
     j["mesh"] = fc.mesh;
     j["units"] = {{"points", fc.length_unit}, {"length_scale_m", fc.length_scale}, {"velocity", "m/s"},
@@ -167,6 +195,49 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
                        r.solve_seconds, r.seconds);
   };
 
+  // Checkpoints: the state to go on from, in the mesh's numbering.
+  const std::string checkpoint_path = output_dir + "/checkpoint.bin";
+  const uint64_t fingerprint = run_fingerprint(mesh, fc.dt);
+  const auto write_checkpoint_now = [&]() {
+    if (!writer) return;
+    Checkpoint c;
+    c.fingerprint = fingerprint;
+    c.flow = ns.state();
+    c.saved = summary.saved;
+    c.linear_iterations = summary.linear_iterations;
+    c.log = log;
+    c.fluid_files = fluid_files;
+    c.wall_files = wall_files;
+    c.indices = indices.state();
+    write_checkpoint(checkpoint_path, c);
+  };
+  int first_step = 0;
+  if (restart) {
+    if (fc.steady) throw InputError(fmt::format("{}: --restart: a steady case has no time steps to go on from", fc.path));
+    if (!std::filesystem::exists(checkpoint_path))
+      throw InputError(fmt::format("{}: no checkpoint to restart from; run the case without --restart", checkpoint_path));
+    const Checkpoint c = read_checkpoint(checkpoint_path);
+    if (c.fingerprint != fingerprint)
+      throw InputError(fmt::format("{}: the checkpoint is of another mesh or time step than {}'s; run the case without "
+                                   "--restart (or into another folder)",
+                                   checkpoint_path, fc.path));
+    ns.restore(c.flow);
+    first_step = c.flow.steps;
+    summary.steps = c.flow.steps;
+    summary.saved = c.saved;
+    summary.linear_iterations = c.linear_iterations;
+    log = c.log;
+    fluid_files = c.fluid_files;
+    wall_files = c.wall_files;
+    indices.restore(c.indices);
+    if (writer) {  // the folder as it was at the checkpoint (later saves are written again)
+      io::write_text(output_dir + "/fluid.pvd", pvd(fluid_files, units));
+      io::write_text(output_dir + "/wall.pvd", pvd(wall_files, units));
+      io::write_text(output_dir + "/log.csv", log);
+    }
+    reporter.info(fmt::format("restart from {}: step {}, t = {:g} s", checkpoint_path, c.flow.steps, c.flow.time));
+  }
+
   const auto solve_start = Clock::now();
   try {
     if (fc.steady) {
@@ -179,12 +250,17 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     } else {
       const int steps = static_cast<int>(std::ceil(fc.end / fc.dt - 1e-9));
       reporter.info(fmt::format("{} steps of {:g} s to t = {:g} s, {} dofs", steps, fc.dt, fc.end, ns.dofs()));
-      if (fc.stokes_start) {
+      if (fc.stokes_start && !restart) {
         const StepReport r = ns.start_from_stokes();
         reporter.info(fmt::format("initial state: the Stokes flow at t = {:g} s ({} linear iterations, {:.3g} s)",
                                   r.time, r.linear_iterations, r.seconds));
       }
-      for (int k = 0; k < steps; ++k) {
+      if (first_step >= steps)
+        reporter.warning(fmt::format("the checkpoint is at step {}, the case ends at step {}: nothing to do (a later "
+                                     "[time] end extends the run)",
+                                     first_step, steps));
+      const StopSignals signals;
+      for (int k = first_step; k < steps; ++k) {
         const StepReport r = ns.step();
         summary.steps = r.step;
         summary.linear_iterations += r.linear_iterations;
@@ -197,6 +273,25 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
           indices.add(r.time, tau);
         }
         if (r.step % fc.save_every == 0 || k + 1 == steps) save(r.time, in_window ? &tau : nullptr);
+        // Every process stops at the same step (a signal may reach them apart).
+        const bool stop = any_process(stop_signal != 0);
+        if (stop || k + 1 == steps || (fc.checkpoint_every > 0 && r.step % fc.checkpoint_every == 0))
+          write_checkpoint_now();
+        if (stop) {
+          summary.status = "stopped";
+          summary.signal = stop_signal != 0 ? static_cast<int>(stop_signal) : SIGTERM;
+          summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+          summary.seconds_per_step =
+              r.step > first_step ? std::chrono::duration<double>(Clock::now() - solve_start).count() /
+                                        (r.step - first_step)
+                                  : 0.0;
+          if (writer) io::write_text(output_dir + "/log.csv", log);
+          write_summary();
+          reporter.warning(fmt::format("stopped by signal {} after step {} (t = {:g} s); the checkpoint {} holds it: "
+                                       "'vesselmesh simulate {} -o {} --restart' goes on",
+                                       summary.signal, r.step, r.time, checkpoint_path, fc.path, output_dir));
+          return summary;
+        }
         reporter.progress("time steps", double(k + 1) / steps);
       }
     }
@@ -211,7 +306,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   summary.status = "completed";
   summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const double solving = std::chrono::duration<double>(Clock::now() - solve_start).count();
-  summary.seconds_per_step = summary.steps > 0 ? solving / summary.steps : 0.0;
+  summary.seconds_per_step = summary.steps > first_step ? solving / (summary.steps - first_step) : 0.0;
   write_summary();
   return summary;
 }

@@ -11,11 +11,16 @@
 //   log.csv                        per step: time, flux (m3/s, out of the domain) and mean
 //                                  pressure (Pa) per boundary, linear iterations, CFL, seconds
 //   summary.json                   sizes, steps, times, the SI scale applied, units, status
+//   checkpoint.bin                 unsteady runs: the state to go on from (flow/checkpoint.h), every
+//                                  [output] checkpoint_every steps, at the last step, and when
+//                                  SIGTERM or SIGINT stops the run (after the step under way: the
+//                                  run then ends with status "stopped"); `restart` goes on from it
 // Points stay in the mesh's unit (named in summary.json and in the PVD files); the fields are
 // SI. Every file is written whole (atomically); the PVD collections, log and summary are
 // rewritten at each save, so a run that stops early leaves a consistent folder behind.
 // Under `mpirun -np K` each process reads the mesh, assembles the rows of its share of the
-// points (consecutive ranges) and holds the whole solution; the first process writes.
+// points (consecutive ranges of the solver's numbering) and holds the whole solution; the first
+// process writes.
 #pragma once
 
 #include "flow/case.h"
@@ -26,7 +31,8 @@
 namespace vesselmesh::flow {
 
 struct SimulationSummary {
-  std::string status;  // "completed" or "diverged"
+  std::string status;  // "completed", "diverged" or "stopped" (by `signal`, a checkpoint written)
+  int signal = 0;
   int points = 0, tetrahedra = 0, dofs = 0, ranks = 1;
   int steps = 0, saved = 0, linear_iterations = 0;
   double seconds = 0.0, seconds_per_step = 0.0, setup_seconds = 0.0;
@@ -35,9 +41,13 @@ struct SimulationSummary {
   std::string solver;
 };
 
-// `extra_petsc_options` are applied after the case's. Throws InputError for a bad case or mesh
-// (before any solve), ComputationError when the solve diverges (after writing what it has).
+// `extra_petsc_options` are applied after the case's. `restart`: go on from the output folder's
+// checkpoint (the same mesh and dt; the case's end may be later: the run is extended), as if
+// the run had not stopped (the same results to the linear solver's tolerance). Throws InputError
+// for a bad case or mesh or checkpoint (before any solve), ComputationError when the solve
+// diverges (after writing what it has).
 SimulationSummary simulate(const FlowCase& flow_case, const std::string& output_dir,
-                           const std::string& extra_petsc_options = "", const Reporter& reporter = silent_reporter());
+                           const std::string& extra_petsc_options = "", const Reporter& reporter = silent_reporter(),
+                           bool restart = false);
 
 }  // namespace vesselmesh::flow

@@ -37,6 +37,16 @@ class ComputationError : public Error {
   using Error::Error;
 };
 
+// A long run stopped by a signal (SIGTERM, SIGINT) once it had saved what it needs to go on.
+class StoppedError : public Error {
+ public:
+  StoppedError(const std::string& message, int signal) : Error(message), signal_(signal) {}
+  int signal() const { return signal_; }
+
+ private:
+  int signal_;
+};
+
 [[noreturn]] void throw_internal(const char* condition, const char* file, int line,
                                  const std::string& message);
 

@@ -31,6 +31,24 @@ class WssIndexAccumulator {
   // Throws InputError with fewer than two samples (no time span).
   WssIndices result() const;
 
+  // The running sums, to save and resume (a checkpoint).
+  struct State {
+    int samples = 0;
+    double start = 0.0, last_time = 0.0;
+    std::vector<Vec3> last, integral;
+    std::vector<double> magnitude_integral, change;
+  };
+  State state() const { return {samples_, start_, last_time_, last_, integral_, magnitude_integral_, change_}; }
+  void restore(const State& s) {
+    samples_ = s.samples;
+    start_ = s.start;
+    last_time_ = s.last_time;
+    last_ = s.last;
+    integral_ = s.integral;
+    magnitude_integral_ = s.magnitude_integral;
+    change_ = s.change;
+  }
+
  private:
   int samples_ = 0;
   double start_ = 0.0, last_time_ = 0.0;

@@ -295,7 +295,20 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       step = Clock::now();
       flow::FlowCase fc = base_case;
       fc.mesh = volume_file;
-      const flow::SimulationSummary s = flow::simulate(fc, flow_dir, "", reporter);
+      // A flow of this mesh and case stopped before its end (the study killed) goes on from its
+      // checkpoint: the meshes are made again the same, the key names the case.
+      const std::string flow_key_file = flow_dir + "/study_flow_key";
+      const bool resume = !fc.steady && fs::exists(flow_dir + "/checkpoint.bin") && fs::exists(flow_key_file) &&
+                          io::read_file(flow_key_file) == flow_key;
+      if (resume) reporter.info(fmt::format("study: {}: the flow goes on from its checkpoint", name));
+      fs::create_directories(flow_dir);
+      io::write_text(flow_key_file, flow_key);
+      const flow::SimulationSummary s = flow::simulate(fc, flow_dir, "", reporter, resume);
+      if (s.status == "stopped")
+        throw StoppedError(fmt::format("stopped by signal {} in {}'s flow (its checkpoint is kept): run the same "
+                                       "study again to go on",
+                                       s.signal, name),
+                           s.signal);
       run.seconds["flow"] = since(step);
       run.surface_triangles = remeshed.stats.triangles;
       run.surface_points = remeshed.stats.points;

@@ -543,6 +543,18 @@ std::string read_text(const std::string& path) {
 // named in the collections; a case naming a tag the mesh lacks stops before any work.
 // examples/pipe_pulsatile.toml for a small pipe meshed in a test's folder: the mesh `mesh_file`
 // (written there by `volume` with `volume_options`), run to `end` s, the waveform found.
+// The largest |a - b| over the largest |a| (arrays of the same size, not empty).
+double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  EXPECT_EQ(a.size(), b.size());
+  EXPECT_FALSE(a.empty());
+  double largest = 0.0, difference = 0.0;
+  for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+    largest = std::max(largest, std::abs(a[i]));
+    difference = std::max(difference, std::abs(a[i] - b[i]));
+  }
+  return largest > 0.0 ? difference / largest : difference;
+}
+
 struct ExampleCase {
   std::string text;
 
@@ -625,6 +637,49 @@ TEST(Cli, SimulateRunsTheExampleCase) {
   EXPECT_FALSE(std::filesystem::exists(tmp.path("bad-out")));
 }
 
+// A run stopped by SIGTERM saves its checkpoint after the step under way and exits with
+// 128 + 15; `--restart` goes on to the end and gives the uninterrupted run's result (issue 29).
+TEST(Cli, SimulateStoppedBySigtermGoesOnWithRestart) {
+  test::TemporaryFolder tmp;
+  ExampleCase example(tmp, "pipe.msh", {}, "0.3");  // 60 steps of 5 ms
+  example.replace("save_every = 10", "save_every = 20");
+  example.replace("petsc_options = \"\"", "petsc_options = \"-ksp_rtol 1e-10\"\n[output]\ncheckpoint_every = 2");
+  test::write_bytes(tmp.path("case.toml"), example.text);
+  // Started in the background, killed once its first checkpoint is there.
+  const std::string command = "sh -c '" + std::string(VESSELMESH_PROGRAM) + " simulate " + tmp.path("case.toml") +
+                              " -o " + tmp.path("run") + " -q 2>" + tmp.path("run.err") + " & pid=$!; " +
+                              "while [ ! -f " + tmp.path("run/checkpoint.bin") + " ]; do sleep 0.02; done; " +
+                              "kill -TERM $pid; wait $pid; echo $? >" + tmp.path("code") + "'";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  EXPECT_EQ(read_text(tmp.path("code")), "143\n") << read_text(tmp.path("run.err"));
+  EXPECT_NE(read_text(tmp.path("run.err")).find("--restart' goes on"), std::string::npos) << read_text(tmp.path("run.err"));
+  const Json stopped = Json::parse(read_text(tmp.path("run/summary.json")));
+  EXPECT_EQ(stopped["status"], "stopped");
+  EXPECT_EQ(stopped["signal"], 15);
+  const int stopped_at = stopped["steps"];
+  EXPECT_LT(stopped_at, 60);
+
+  const RunResult restarted = run({"simulate", tmp.path("case.toml"), "-o", tmp.path("run"), "--restart", "--json"});
+  ASSERT_EQ(restarted.code, 0) << restarted.err;
+  EXPECT_NE(restarted.err.find(fmt::format("restart from {}: step {}", tmp.path("run/checkpoint.bin"), stopped_at)),
+            std::string::npos)
+      << restarted.err;
+  EXPECT_EQ(Json::parse(restarted.out)["steps"], 60);
+  ASSERT_EQ(run({"simulate", tmp.path("case.toml"), "-o", tmp.path("whole"), "-q"}).code, 0);
+  const auto velocity = [&](const std::string& folder) {
+    std::vector<Field> fields;
+    io::read_vtu_volume(tmp.path(folder + "/fluid_000002.vtu"), &fields);
+    for (const Field& f : fields)
+      if (f.name == "velocity") return f.values;
+    return std::vector<double>{};
+  };
+  EXPECT_LT(relative_difference(velocity("whole"), velocity("run")), 1e-7);
+  // Nothing to restart from: a one-line error, exit 2.
+  const RunResult none = run({"simulate", tmp.path("case.toml"), "-o", tmp.path("elsewhere"), "--restart"});
+  EXPECT_EQ(none.code, 2);
+  EXPECT_NE(last_line(none.err).find("no checkpoint to restart from"), std::string::npos) << none.err;
+}
+
 // mpirun -np 2 gives the one-process results to the solver's tolerance (issue 8).
 TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
   if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun is not installed";
@@ -648,15 +703,7 @@ TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
       if (f.name == "wss") return f.values;
     return std::vector<double>{};
   };
-  const std::vector<double> a = wss("one"), b = wss("two");
-  ASSERT_EQ(a.size(), b.size());
-  ASSERT_FALSE(a.empty());
-  double largest = 0.0, difference = 0.0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    largest = std::max(largest, std::abs(a[i]));
-    difference = std::max(difference, std::abs(a[i] - b[i]));
-  }
-  EXPECT_LT(difference, 1e-6 * largest) << "largest wss " << largest << " Pa";
+  EXPECT_LT(relative_difference(wss("one"), wss("two")), 1e-6);
 }
 
 // The flow inside the volume read back: steady Poiseuille's centerline velocity along a line that

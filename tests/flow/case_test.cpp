@@ -129,6 +129,14 @@ TEST(FlowCase, WallShearMethodByName) {
   EXPECT_EQ(parse_case(kContract + std::string("[output]\nwss_method = \"face\"\n"), "case.toml").wss_method, "face");
 }
 
+TEST(FlowCase, CheckpointsEverySaveUnlessToldOtherwise) {
+  EXPECT_EQ(parse_case(kContract, "case.toml").checkpoint_every, 10);  // the case's save_every
+  EXPECT_EQ(parse_case(with(kContract, "save_every = 10", "save_every = 7"), "case.toml").checkpoint_every, 7);
+  EXPECT_EQ(parse_case(kContract + std::string("[output]\ncheckpoint_every = 0\n"), "case.toml").checkpoint_every, 0);
+  EXPECT_EQ(parse_case(kContract + std::string("[output]\ncheckpoint_every = 50\n"), "case.toml").checkpoint_every, 50);
+  expect_error(kContract + std::string("[output]\ncheckpoint_every = -1\n"), "output.checkpoint_every");
+}
+
 TEST(FlowCase, TagsMustMatchTheMesh) {
   const FlowCase c = parse_case(kContract, "case.toml");
   try {

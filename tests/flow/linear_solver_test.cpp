@@ -33,7 +33,7 @@ TEST(LinearSolver, SolvesWithTheCallersOptions) {
   for (int i = 0; i < n; ++i) exact[i] = std::sin(0.1 * i) + 0.01 * i;
   for (int i = 0; i < n; ++i)
     for (int k = pattern.row_start[i]; k < pattern.row_start[i + 1]; ++k) b[i] += values[k] * exact[pattern.columns[k]];
-  LinearSolver solver(pattern, 1, time_step_options(pattern.rows), "-ksp_type cg -pc_type jacobi -ksp_rtol 1e-12");
+  LinearSolver solver(pattern, 1, time_step_options(), "-ksp_type cg -pc_type jacobi -ksp_rtol 1e-12");
   const SolveStats stats = solver.solve(values, b, x);
   EXPECT_TRUE(stats.converged) << stats.reason;
   EXPECT_GT(stats.iterations, 0);
@@ -51,18 +51,10 @@ TEST(LinearSolver, SolvesWithTheCallersOptions) {
 TEST(LinearSolver, RefusedOptionsAreOptionErrors) {
   std::vector<double> values;
   const SparsePattern pattern = laplacian_pattern(10, values);
-  EXPECT_THROW(LinearSolver(pattern, 1, time_step_options(pattern.rows), "-pc_type no_such_preconditioner"), OptionError);
+  EXPECT_THROW(LinearSolver(pattern, 1, time_step_options(), "-pc_type no_such_preconditioner"), OptionError);
 }
 
 TEST(LinearSolver, OneProcessHere) { EXPECT_EQ(process_count(), 1); }
-
-TEST(LinearSolver, TimeStepsTakeTheFieldSplitOnLargeSystems) {
-  // ILU(0) of the whole system stops converging on large meshes (the FDA nozzle, 490k unknowns):
-  // from kTimeStepSplitUnknowns on, time steps take the steady solves' Schur field split.
-  EXPECT_EQ(time_step_options(kTimeStepSplitUnknowns - 1).find("fieldsplit"), std::string::npos);
-  EXPECT_NE(time_step_options(kTimeStepSplitUnknowns - 1).find("-sub_pc_type ilu"), std::string::npos);
-  EXPECT_EQ(time_step_options(kTimeStepSplitUnknowns), saddle_point_options());
-}
 
 // Solves (A + shift I) x = b for the known x of `exact` and checks the answer.
 SolveStats solve_shifted(LinearSolver& solver, const SparsePattern& pattern, std::vector<double> values,
@@ -88,7 +80,7 @@ TEST(LinearSolver, ReusesThePreconditionerWhileItServes) {
   std::vector<double> exact(n);
   for (int i = 0; i < n; ++i) exact[i] = std::cos(0.05 * i) + 0.002 * i;
   const std::string options = "-ksp_type gmres -pc_type ilu -ksp_rtol 1e-10";
-  LinearSolver solver(pattern, 1, time_step_options(n), options);
+  LinearSolver solver(pattern, 1, time_step_options(), options);
   solver.reuse_preconditioner(true);
 
   const SolveStats first = solve_shifted(solver, pattern, values, 0.0, exact);
@@ -117,7 +109,7 @@ TEST(LinearSolver, ReusesThePreconditionerWhileItServes) {
   EXPECT_TRUE(solve_shifted(solver, pattern, values, 0.02, exact).preconditioner_built);
 
   // Off (the default): every solve builds.
-  LinearSolver fresh(pattern, 1, time_step_options(n), options);
+  LinearSolver fresh(pattern, 1, time_step_options(), options);
   EXPECT_TRUE(solve_shifted(fresh, pattern, values, 0.0, exact).preconditioner_built);
   EXPECT_TRUE(solve_shifted(fresh, pattern, values, 1e-7, exact).preconditioner_built);
 }

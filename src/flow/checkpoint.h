@@ -1,0 +1,34 @@
+// A run's checkpoint: what `vesselmesh simulate --restart` needs to go on from a step as if the
+// run had not stopped. Binary (native doubles, little-endian machines), written atomically
+// (io/atomic_file.h: a checkpoint is whole or absent), checked on reading (a truncated or
+// foreign file, or one of another mesh or time step, is an InputError naming it).
+// Fields are in the mesh's numbering, so the file does not depend on how the solver numbers
+// or shares the points.
+#pragma once
+
+#include "flow/navier_stokes.h"
+#include "post/indices.h"
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace vesselmesh::flow {
+
+struct Checkpoint {
+  uint64_t fingerprint = 0;  // of the mesh and the time step (run_fingerprint)
+  FlowState flow;
+  int saved = 0, linear_iterations = 0;
+  std::string log;  // log.csv so far
+  std::vector<std::pair<double, std::string>> fluid_files, wall_files;  // the PVD collections so far
+  post::WssIndexAccumulator::State indices;
+};
+
+// The run a checkpoint belongs to: its mesh's points, cells and boundary, and the time step.
+uint64_t run_fingerprint(const TetMesh& mesh, double dt);
+
+void write_checkpoint(const std::string& path, const Checkpoint& checkpoint);
+Checkpoint read_checkpoint(const std::string& path);
+
+}  // namespace vesselmesh::flow

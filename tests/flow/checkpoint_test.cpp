@@ -1,0 +1,214 @@
+#include "flow/checkpoint.h"
+
+#include "analysis/open_ends.h"
+#include "flow/simulate.h"
+#include "io/atomic_file.h"
+#include "io/msh.h"
+#include "io/vtk_formats.h"
+#include "mesh/error.h"
+#include "synth/shapes.h"
+#include "test_support.h"
+#include "volume/volume_mesh.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+namespace vesselmesh::flow {
+namespace {
+
+Checkpoint sample_checkpoint() {
+  Checkpoint c;
+  c.fingerprint = 0x1234abcdull;
+  c.flow.time = 0.125;
+  c.flow.steps = 25;
+  c.flow.velocity = {Vec3(1, 2, 3), Vec3(-1, 0.5, 1e-9)};
+  c.flow.previous = {Vec3(0.9, 2, 3), Vec3(-1, 0.25, 0)};
+  c.flow.kinematic_pressure = {3.5, -2.0};
+  c.saved = 3;
+  c.linear_iterations = 321;
+  c.log = "step,time_s\n1,0.005\n";
+  c.fluid_files = {{0.05, "fluid_000000.vtu"}, {0.1, "fluid_000001.vtu"}};
+  c.wall_files = {{0.05, "wall_000000.vtp"}};
+  c.indices.samples = 4;
+  c.indices.start = 0.01;
+  c.indices.last_time = 0.125;
+  c.indices.last = {Vec3(0.1, 0.2, 0.3)};
+  c.indices.integral = {Vec3(1, 1, 1)};
+  c.indices.magnitude_integral = {0.7};
+  c.indices.change = {0.01};
+  return c;
+}
+
+TEST(Checkpoint, ReadsBackWhatItWroteAndRefusesDamagedFiles) {
+  const test::TemporaryFolder folder;
+  const std::string path = folder.path("checkpoint.bin");
+  const Checkpoint c = sample_checkpoint();
+  write_checkpoint(path, c);
+  const Checkpoint r = read_checkpoint(path);
+  EXPECT_EQ(r.fingerprint, c.fingerprint);
+  EXPECT_EQ(r.flow.time, c.flow.time);
+  EXPECT_EQ(r.flow.steps, c.flow.steps);
+  EXPECT_EQ(r.flow.velocity, c.flow.velocity);
+  EXPECT_EQ(r.flow.previous, c.flow.previous);
+  EXPECT_EQ(r.flow.kinematic_pressure, c.flow.kinematic_pressure);
+  EXPECT_EQ(r.saved, c.saved);
+  EXPECT_EQ(r.linear_iterations, c.linear_iterations);
+  EXPECT_EQ(r.log, c.log);
+  EXPECT_EQ(r.fluid_files, c.fluid_files);
+  EXPECT_EQ(r.wall_files, c.wall_files);
+  EXPECT_EQ(r.indices.samples, 4);
+  EXPECT_EQ(r.indices.last, c.indices.last);
+  EXPECT_EQ(r.indices.change, c.indices.change);
+
+  // Cut short at any byte: a clear error, never a half-read state.
+  const std::string bytes = io::read_file(path);
+  for (size_t keep : {size_t{0}, size_t{10}, bytes.size() / 2, bytes.size() - 1}) {
+    test::write_bytes(folder.path("cut.bin"), bytes.substr(0, keep));
+    try {
+      read_checkpoint(folder.path("cut.bin"));
+      ADD_FAILURE() << "a checkpoint of " << keep << " bytes was read";
+    } catch (const InputError& e) {
+      EXPECT_TRUE(std::string(e.what()).find("cut short") != std::string::npos ||
+                  std::string(e.what()).find("not a vesselmesh checkpoint") != std::string::npos)
+          << e.what();
+    }
+  }
+  test::write_bytes(folder.path("other.bin"), "mesh = \"pipe.msh\"\n" + std::string(200, 'x'));
+  EXPECT_THROW(read_checkpoint(folder.path("other.bin")), InputError);
+  test::write_bytes(folder.path("long.bin"), bytes + "x");
+  EXPECT_THROW(read_checkpoint(folder.path("long.bin")), InputError);
+
+  // A write that cannot be made leaves the old checkpoint whole (and nothing half-written).
+  std::filesystem::permissions(folder.folder(), std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+  const bool writable = [&] {  // root writes anyway: then this part says nothing
+    std::FILE* f = std::fopen(folder.path("probe").c_str(), "w");
+    if (f) std::fclose(f), std::filesystem::remove(folder.path("probe"));
+    return f != nullptr;
+  }();
+  if (!writable) {
+    Checkpoint later = c;
+    later.flow.steps = 99;
+    EXPECT_THROW(write_checkpoint(path, later), Error);
+    EXPECT_EQ(read_checkpoint(path).flow.steps, 25);
+  }
+  std::filesystem::permissions(folder.folder(), std::filesystem::perms::owner_all);
+  EXPECT_THROW(write_checkpoint(folder.path("no/such/folder/checkpoint.bin"), c), InputError);
+  for (const std::string& name : folder.files()) EXPECT_EQ(name.find(".tmp"), std::string::npos) << name;
+}
+
+// A pipe's volume mesh in `folder`/pipe.msh and a pulsatile case on it ending at `steps` steps.
+std::string pipe_case(const test::TemporaryFolder& folder, int steps, const std::string& extra = "") {
+  if (!std::filesystem::exists(folder.path("pipe.msh"))) {
+    const TriMesh pipe = synth::cylinder({.radius = 1.5, .length = 6.0, .resolution = 0.45});
+    const auto ends = analysis::open_ends(pipe);
+    volume::VolumeOptions options;
+    options.layer.layers = 2;
+    options.inlet = ends[0].center.z() < ends[1].center.z() ? 0 : 1;
+    io::write_msh(folder.path("pipe.msh"),
+                  volume::build_volume(pipe, ends, std::vector<double>(pipe.points.size(), 1.5), options).mesh);
+    test::write_bytes(folder.path("flow.csv"), "time,flow\n0,0.2\n0.02,0.6\n0.04,0.2\n");
+  }
+  const std::string path = folder.path(fmt::format("case_{}.toml", steps));
+  test::write_bytes(path, fmt::format(R"(mesh = "pipe.msh"
+length_unit = "mm"
+[time]
+dt = 0.002
+end = {}
+save_every = 4
+initial = "stokes"
+[[boundary]]
+tag = "inlet"
+type = "velocity"
+waveform = "flow.csv"
+[[boundary]]
+tag = "outlet_1"
+type = "resistance"
+resistance = 1e8
+[[boundary]]
+tag = "wall"
+type = "wall"
+[output]
+checkpoint_every = 3
+{})",
+                                      0.002 * steps, extra));
+  return path;
+}
+
+// The last saved frame's velocity and pressure, and the indices.
+struct Results {
+  std::vector<double> velocity, pressure, tawss, osi;
+};
+Results results_in(const std::string& dir, int frame) {
+  Results r;
+  std::vector<Field> fields;
+  io::read_vtu_volume(fmt::format("{}/fluid_{:06d}.vtu", dir, frame), &fields);
+  for (const Field& f : fields) {
+    if (f.name == "velocity") r.velocity = f.values;
+    if (f.name == "pressure") r.pressure = f.values;
+  }
+  const io::SurfaceData indices = io::read_vtk_surface(dir + "/indices.vtp", io::VtkFormat::vtp);
+  for (const Field& f : indices.point_data) {
+    if (f.name == "tawss") r.tawss = f.values;
+    if (f.name == "osi") r.osi = f.values;
+  }
+  return r;
+}
+
+double largest_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  EXPECT_EQ(a.size(), b.size());
+  EXPECT_FALSE(a.empty());
+  double worst = 0.0, scale = 0.0;
+  for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+    worst = std::max(worst, std::abs(a[i] - b[i]));
+    scale = std::max(scale, std::abs(a[i]));
+  }
+  return scale > 0.0 ? worst / scale : worst;
+}
+
+// Issue 29: a run stopped at step 8 of 12 (a case ending there, at a save) and restarted from its
+// checkpoint with the whole case gives the run that was not stopped: the same saved frames,
+// fields, indices and log, to the linear solver's tolerance.
+TEST(Simulate, ARestartGoesOnAsIfTheRunHadNotStopped) {
+  const test::TemporaryFolder folder;
+  const FlowCase whole = read_case(pipe_case(folder, 12));
+  const SimulationSummary a = simulate(whole, folder.path("whole"));
+  EXPECT_EQ(a.status, "completed");
+  EXPECT_EQ(a.steps, 12);
+
+  const SimulationSummary first = simulate(read_case(pipe_case(folder, 8)), folder.path("parts"));
+  EXPECT_EQ(first.steps, 8);
+  const Checkpoint at_eight = read_checkpoint(folder.path("parts/checkpoint.bin"));
+  EXPECT_EQ(at_eight.flow.steps, 8);  // written at the run's last step
+  const SimulationSummary b = simulate(whole, folder.path("parts"), "", silent_reporter(), /*restart=*/true);
+  EXPECT_EQ(b.status, "completed");
+  EXPECT_EQ(b.steps, 12);
+  EXPECT_EQ(b.saved, a.saved);
+  EXPECT_EQ(read_checkpoint(folder.path("parts/checkpoint.bin")).flow.steps, 12);
+
+  const Results ra = results_in(folder.path("whole"), a.saved - 1), rb = results_in(folder.path("parts"), b.saved - 1);
+  EXPECT_LT(largest_difference(ra.velocity, rb.velocity), 1e-5);
+  EXPECT_LT(largest_difference(ra.pressure, rb.pressure), 1e-5);
+  EXPECT_LT(largest_difference(ra.tawss, rb.tawss), 1e-5);
+  EXPECT_LT(largest_difference(ra.osi, rb.osi), 1e-4);
+  // The log: the same steps, times and (to 9 digits, within the tolerance) flows.
+  const std::string la = io::read_file(folder.path("whole/log.csv")), lb = io::read_file(folder.path("parts/log.csv"));
+  EXPECT_EQ(std::count(la.begin(), la.end(), '\n'), std::count(lb.begin(), lb.end(), '\n'));
+  EXPECT_EQ(io::read_file(folder.path("whole/fluid.pvd")), io::read_file(folder.path("parts/fluid.pvd")));
+
+  // Another mesh or time step: refused, naming the checkpoint.
+  FlowCase other_dt = read_case(pipe_case(folder, 14));
+  other_dt.dt = 0.001;
+  try {
+    simulate(other_dt, folder.path("parts"), "", silent_reporter(), true);
+    ADD_FAILURE() << "a checkpoint of another time step was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("another mesh or time step"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(simulate(whole, folder.path("nowhere"), "", silent_reporter(), true), InputError);
+}
+
+}  // namespace
+}  // namespace vesselmesh::flow
