@@ -2,6 +2,7 @@
 
 #include "analysis/open_ends.h"
 #include "flow/case.h"
+#include "flow/simulate.h"
 #include "io/atomic_file.h"
 #include "io/surface.h"
 #include "mesh/locator.h"
@@ -296,6 +297,56 @@ point = [0, 3, 0]
   test::write_bytes(tmp.path("flow.toml"), std::string(kCase) + "# changed\n");
   const StudyResult changed = run_study(read_study(tmp.path("study.toml")), tmp.path("out"));
   EXPECT_FALSE(changed.meshes[0].reused);
+}
+
+// A study killed during a flow goes on, when run again, from that flow's checkpoint (issue 29):
+// here the uniform mesh's flow is put back at its step 2 of 4 (the checkpoint of a run of its
+// case stopped there) and its stamp removed; the study makes the same meshes again, goes on from
+// step 2 and finds what the uninterrupted study found.
+TEST(Study, AStoppedFlowGoesOnFromItsCheckpoint) {
+  test::TemporaryFolder tmp;
+  std::string unsteady = kCase;
+  unsteady.replace(unsteady.find("steady = true"), 13, "dt = 0.002\nend = 0.008\nsave_every = 4\ninitial = \"stokes\"");
+  unsteady += "[solver]\npetsc_options = \"-ksp_rtol 1e-10\"\n[output]\ncheckpoint_every = 2\n";
+  test::write_bytes(tmp.path("flow.toml"), unsteady);
+  test::write_bytes(tmp.path("study.toml"), study_text(R"(triangles = 2000
+meshes = ["uniform"]
+[reference]
+levels = 1
+factor = 1.5
+[volume]
+layers = 2
+[[ring]]
+name = "parent"
+point = [0, 0, -10]
+normal = [0, 0, 1]
+)"));
+  const StudyConfig config = read_study(tmp.path("study.toml"));
+  const StudyResult first = run_study(config, tmp.path("out"));
+  ASSERT_EQ(first.meshes.size(), 2u);
+
+  // The uniform mesh's flow as a kill at step 2 leaves it.
+  flow::FlowCase fc = flow::read_case(tmp.path("flow.toml"));
+  fc.mesh = tmp.path("out/uniform/volume.msh");
+  fc.end = 0.004;
+  flow::simulate(fc, tmp.path("half"));
+  std::filesystem::copy_file(tmp.path("half/checkpoint.bin"), tmp.path("out/uniform/flow/checkpoint.bin"),
+                             std::filesystem::copy_options::overwrite_existing);
+  std::filesystem::remove(tmp.path("out/uniform/stamp.json"));
+
+  struct Said : Reporter {
+    mutable std::string text;
+    void info(std::string_view m) const override { text += std::string(m) + "\n"; }
+  } said;
+  const StudyResult again = run_study(config, tmp.path("out"), said);
+  EXPECT_FALSE(again.meshes[0].reused);
+  EXPECT_TRUE(again.meshes[1].reused);
+  EXPECT_NE(said.text.find("study: uniform: the flow goes on from its checkpoint"), std::string::npos) << said.text;
+  EXPECT_NE(said.text.find("step 2, t = 0.004 s"), std::string::npos) << said.text;
+  const auto least = [](const StudyResult& r) {
+    return r.meshes[0].rings[0].samples[r.meshes[0].rings[0].minimum].magnitude;
+  };
+  EXPECT_NEAR(least(again), least(first), 1e-6 * least(first));
 }
 
 }  // namespace
