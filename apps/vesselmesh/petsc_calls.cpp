@@ -24,6 +24,7 @@ struct LinearSolver::Impl {
 int process_count() { return petsc_calls().process_count(); }
 int process_rank() { return petsc_calls().process_rank(); }
 bool any_process(bool flag) { return petsc_calls().any_process(flag); }
+std::vector<double> gather_all(double value) { return petsc_calls().gather_all(value); }
 
 LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::string& defaults,
                            const std::string& options)

@@ -59,6 +59,7 @@ Command add_simulate_command(CLI::App& parent) {
                               {"seconds_per_step", round_to(s.seconds_per_step, 4)},
                               {"length_scale_m", s.length_scale},
                               {"solver", s.solver},
+                              {"peak_memory_mb", s.peak_memory_mb},
                               {"output", o->output}});
             return 0;
           }};

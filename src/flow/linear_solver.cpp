@@ -72,6 +72,13 @@ bool any_process(bool flag) {
   return any != 0;
 }
 
+std::vector<double> gather_all(double value) {
+  ensure_petsc();
+  std::vector<double> all(process_count());
+  MPI_Allgather(&value, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, PETSC_COMM_WORLD);
+  return all;
+}
+
 struct LinearSolver::Impl {
   SparsePattern pattern;
   int block_size = 1;

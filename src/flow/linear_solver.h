@@ -72,6 +72,8 @@ int process_count();
 int process_rank();
 // Whether `flag` is true on any process (every process calls it; one process: the flag).
 bool any_process(bool flag);
+// Every process's `value`, in rank order (every process calls it).
+std::vector<double> gather_all(double value);
 
 class LinearSolver {
  public:

@@ -19,6 +19,11 @@ constexpr int kBlock = 4;     // u, v, w, p per node
 constexpr double kCI = 36.0;  // inverse-estimate constant of linear tetrahedra
 
 using Clock = std::chrono::steady_clock;
+
+// The first of the points process `rank` of `ranks` owns (consecutive ranges of equal size).
+int range_begin(int points, int rank, int ranks) {
+  return static_cast<int>(static_cast<long long>(points) * rank / ranks);
+}
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
@@ -168,8 +173,8 @@ void NavierStokes::Impl::build(const TetMesh& mesh) {
 
   // This process's points: consecutive ranges of equal size over the processes.
   const int ranks = process_count(), rank = process_rank();
-  node_begin = static_cast<int>(static_cast<long long>(nn) * rank / ranks);
-  node_end = static_cast<int>(static_cast<long long>(nn) * (rank + 1) / ranks);
+  node_begin = range_begin(nn, rank, ranks);
+  node_end = range_begin(nn, rank + 1, ranks);
   first_row = kBlock * node_begin;
   value_base = kBlock * kBlock * node_start[node_begin];
 
@@ -714,6 +719,38 @@ std::vector<BoundaryFlow> NavierStokes::boundary_flows() const {
     f.mean_pressure = b.area > 0.0 ? weighted / b.area * s.fc.density : 0.0;
     out.push_back(f);
   }
+  return out;
+}
+
+PartitionReport NavierStokes::partition() const {
+  const Impl& s = *impl_;
+  const int ranks = process_count(), nn = s.n();
+  std::vector<int> begin(ranks + 1);
+  for (int r = 0; r <= ranks; ++r) begin[r] = range_begin(nn, r, ranks);
+  const auto owner = [&](int a) {
+    return static_cast<int>(std::upper_bound(begin.begin(), begin.end(), a) - begin.begin()) - 1;
+  };
+  // (point, process) where the process assembles a cell with the point and does not own it.
+  std::vector<std::pair<int, int>> ghosts;
+  for (const Tet& t4 : s.tets) {
+    int owners[4];
+    for (int a = 0; a < 4; ++a) owners[a] = owner(t4[a]);
+    for (int r : owners)
+      for (int a = 0; a < 4; ++a)
+        if (owners[a] != r) ghosts.emplace_back(t4[a], r);
+  }
+  std::sort(ghosts.begin(), ghosts.end());
+  ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
+  PartitionReport out;
+  out.owned_points.resize(ranks);
+  out.ghost_points.assign(ranks, 0);
+  for (int r = 0; r < ranks; ++r) out.owned_points[r] = begin[r + 1] - begin[r];
+  std::vector<std::set<int>> next(ranks);
+  for (const auto& [a, r] : ghosts) {
+    ++out.ghost_points[r];
+    next[r].insert(owner(a));
+  }
+  for (int r = 0; r < ranks; ++r) out.neighbours.push_back(static_cast<int>(next[r].size()));
   return out;
 }
 

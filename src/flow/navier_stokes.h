@@ -51,6 +51,13 @@ struct FlowState {
   std::vector<double> kinematic_pressure;
 };
 
+// How the points are shared among the MPI processes (consecutive ranges of the solver's
+// numbering): per process its points (owned rows / 4), its ghost points (points of the cells it
+// assembles that another process owns) and the processes it shares cells with.
+struct PartitionReport {
+  std::vector<int> owned_points, ghost_points, neighbours;
+};
+
 struct StepReport {
   int step = 0;  // steps taken so far (0 before the first)
   double time = 0.0;
@@ -98,6 +105,7 @@ class NavierStokes {
   std::vector<double> pressure() const;       // Pa per mesh point
   std::vector<BoundaryFlow> boundary_flows() const;
   std::string solver_description() const;
+  PartitionReport partition() const;
 
  private:
   struct Impl;

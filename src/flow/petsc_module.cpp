@@ -8,6 +8,7 @@ extern "C" __attribute__((visibility("default"))) const vesselmesh::flow::PetscC
       &process_count,
       &process_rank,
       &any_process,
+      &gather_all,
       [](SparsePattern pattern, int block_size, const std::string& defaults, const std::string& options) {
         return new LinearSolver(std::move(pattern), block_size, defaults, options);
       },

@@ -13,12 +13,13 @@ inline constexpr const char* kPetscModuleFile = "libvesselmesh-petsc.so";
 
 // The module's entry points: a LinearSolver made, used and destroyed inside the module; `layout`
 // first, as in io/gmsh_module.h (raise it when this table or a type it passes changes).
-inline constexpr int kPetscCallsLayout = 2;
+inline constexpr int kPetscCallsLayout = 3;
 struct PetscCalls {
   int layout;
   int (*process_count)();
   int (*process_rank)();
   bool (*any_process)(bool flag);
+  std::vector<double> (*gather_all)(double value);
   LinearSolver* (*create)(SparsePattern pattern, int block_size, const std::string& defaults,
                           const std::string& options);
   void (*destroy)(LinearSolver* solver);

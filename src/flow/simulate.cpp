@@ -13,6 +13,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/resource.h>
+
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
@@ -100,7 +103,15 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
                                 : ""));
 
   if (writer) std::filesystem::create_directories(output_dir);
-  if (ranks > 1) reporter.info(fmt::format("{} MPI processes, about {} points each", ranks, mesh.num_points() / ranks));
+  const PartitionReport partition = ns.partition();
+  if (ranks > 1) {
+    const auto [least, most] = std::minmax_element(partition.owned_points.begin(), partition.owned_points.end());
+    const auto [least_ghosts, most_ghosts] =
+        std::minmax_element(partition.ghost_points.begin(), partition.ghost_points.end());
+    reporter.info(fmt::format("{} MPI processes: {} to {} unknowns each, {} to {} ghost points, up to {} neighbours",
+                              ranks, 4 * *least, 4 * *most, *least_ghosts, *most_ghosts,
+                              *std::max_element(partition.neighbours.begin(), partition.neighbours.end())));
+  }
   const std::string units = fmt::format("points in {} (x {:g} m), velocity m/s, pressure Pa, wss Pa, time s",
                                         fc.length_unit, fc.length_scale);
   SimulationSummary summary;
@@ -108,6 +119,13 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   summary.tetrahedra = static_cast<int>(all.size());
   summary.dofs = ns.dofs();
   summary.ranks = ranks;
+  summary.partition = partition;
+  // Every process's peak resident memory (MB), gathered (every process calls it).
+  const auto gather_memory = [&]() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    summary.peak_memory_mb = gather_all(static_cast<double>(usage.ru_maxrss) / 1024.0);
+  };
   summary.length_scale = fc.length_scale;
   summary.setup_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   std::vector<std::pair<double, std::string>> fluid_files, wall_files;
@@ -130,6 +148,13 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     j["tetrahedra"] = summary.tetrahedra;
     j["dofs"] = summary.dofs;
     j["ranks"] = ranks;
+    nlohmann::ordered_json parts;
+    parts["owned_unknowns"] = nlohmann::ordered_json::array();
+    for (int points : summary.partition.owned_points) parts["owned_unknowns"].push_back(4 * points);
+    parts["ghost_points"] = summary.partition.ghost_points;
+    parts["neighbours"] = summary.partition.neighbours;
+    j["partition"] = parts;
+    if (!summary.peak_memory_mb.empty()) j["peak_memory_mb"] = summary.peak_memory_mb;
     j["steady"] = fc.steady;
     j["wss_method"] = fc.wss_method;
     if (!fc.steady) j["initial"] = fc.stokes_start ? "stokes" : "rest";
@@ -286,6 +311,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
                                         (r.step - first_step)
                                   : 0.0;
           if (writer) io::write_text(output_dir + "/log.csv", log);
+          gather_memory();
           write_summary();
           reporter.warning(fmt::format("stopped by signal {} after step {} (t = {:g} s); the checkpoint {} holds it: "
                                        "'vesselmesh simulate {} -o {} --restart' goes on",
@@ -307,6 +333,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const double solving = std::chrono::duration<double>(Clock::now() - solve_start).count();
   summary.seconds_per_step = summary.steps > first_step ? solving / (summary.steps - first_step) : 0.0;
+  gather_memory();
   write_summary();
   return summary;
 }

@@ -10,7 +10,9 @@
 //                                  from every time step (post/indices.h)
 //   log.csv                        per step: time, flux (m3/s, out of the domain) and mean
 //                                  pressure (Pa) per boundary, linear iterations, CFL, seconds
-//   summary.json                   sizes, steps, times, the SI scale applied, units, status
+//   summary.json                   sizes, steps, times, the SI scale applied, units, status, how the
+//                                  points are shared among the processes (partition: owned unknowns,
+//                                  ghost points, neighbours per process) and each one's peak memory
 //   checkpoint.bin                 unsteady runs: the state to go on from (flow/checkpoint.h), every
 //                                  [output] checkpoint_every steps, at the last step, and when
 //                                  SIGTERM or SIGINT stops the run (after the step under way: the
@@ -24,6 +26,7 @@
 #pragma once
 
 #include "flow/case.h"
+#include "flow/navier_stokes.h"
 #include "mesh/reporter.h"
 
 #include <string>
@@ -39,6 +42,8 @@ struct SimulationSummary {
   double length_scale = 1e-3;
   double indices_start = 0.0, indices_end = 0.0;  // s; the indices' window (equal: none written)
   std::string solver;
+  PartitionReport partition;          // how the points are shared among the processes
+  std::vector<double> peak_memory_mb;  // per process: its peak resident memory
 };
 
 // `extra_petsc_options` are applied after the case's. `restart`: go on from the output folder's

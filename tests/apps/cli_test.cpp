@@ -680,7 +680,8 @@ TEST(Cli, SimulateStoppedBySigtermGoesOnWithRestart) {
   EXPECT_NE(last_line(none.err).find("no checkpoint to restart from"), std::string::npos) << none.err;
 }
 
-// mpirun -np 2 gives the one-process results to the solver's tolerance (issue 8).
+// mpirun -np 3 gives the one-process results to the solver's tolerance (issues 8, 28), and the
+// summary says how the points were shared and each process's peak memory.
 TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
   if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun is not installed";
   test::TemporaryFolder tmp;
@@ -688,15 +689,29 @@ TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
   example.replace("petsc_options = \"\"", "petsc_options = \"-ksp_rtol 1e-10\"");
   test::write_bytes(tmp.path("case.toml"), example.text);
   ASSERT_EQ(run({"simulate", tmp.path("case.toml"), "-o", tmp.path("one"), "-q"}).code, 0);
-  const std::string command = "mpirun --allow-run-as-root --oversubscribe -np 2 " + quote(VESSELMESH_PROGRAM) +
+  const std::string command = "mpirun --allow-run-as-root --oversubscribe -np 3 " + quote(VESSELMESH_PROGRAM) +
                               " simulate " + quote(tmp.path("case.toml")) + " -o " + quote(tmp.path("two")) +
                               " --json >" + quote(tmp.path("two.json")) + " 2>" + quote(tmp.path("two.err"));
   ASSERT_EQ(std::system(command.c_str()), 0) << read_text(tmp.path("two.err"));
   const Json two = Json::parse(read_text(tmp.path("two.json")));
-  EXPECT_EQ(two["ranks"].get<int>(), 2);
+  EXPECT_EQ(two["ranks"].get<int>(), 3);
   const Json one = Json::parse(read_text(tmp.path("one/summary.json")));
   EXPECT_EQ(one["ranks"].get<int>(), 1);
   EXPECT_EQ(two["dofs"], one["dofs"]);
+  EXPECT_EQ(one["partition"]["owned_unknowns"], Json::array({one["dofs"]}));
+  EXPECT_EQ(one["partition"]["ghost_points"], Json::array({0}));
+  const Json parts = Json::parse(read_text(tmp.path("two/summary.json")))["partition"];
+  ASSERT_EQ(parts["owned_unknowns"].size(), 3u);
+  int owned = 0;
+  for (int r = 0; r < 3; ++r) {
+    owned += parts["owned_unknowns"][r].get<int>();
+    EXPECT_NEAR(parts["owned_unknowns"][r].get<double>(), one["dofs"].get<double>() / 3, 4.0);
+    EXPECT_GT(parts["ghost_points"][r].get<int>(), 0);
+    EXPECT_LT(parts["ghost_points"][r].get<int>(), parts["owned_unknowns"][r].get<int>() / 4);
+    EXPECT_GE(parts["neighbours"][r].get<int>(), 1);
+    EXPECT_GT(two["peak_memory_mb"][r].get<double>(), 10.0);
+  }
+  EXPECT_EQ(owned, one["dofs"].get<int>());
   const auto wss = [&](const std::string& folder) {
     const io::SurfaceData wall = io::read_vtk_surface(tmp.path(folder + "/wall_000000.vtp"), io::VtkFormat::vtp);
     for (const Field& f : wall.point_data)
