@@ -43,6 +43,12 @@ SolveStats LinearSolver::solve(const std::vector<double>& values, const std::vec
   return petsc_calls().solve(*impl_->inside, values, rhs, x);
 }
 
+double* LinearSolver::begin_assembly() { return petsc_calls().begin_assembly(*impl_->inside); }
+void LinearSolver::end_assembly() { petsc_calls().end_assembly(*impl_->inside); }
+SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::vector<double>& x) {
+  return petsc_calls().solve_assembled(*impl_->inside, rhs, x);
+}
+
 void LinearSolver::reuse_preconditioner(bool on) { petsc_calls().reuse_preconditioner(*impl_->inside, on); }
 void LinearSolver::rebuild_preconditioner() { petsc_calls().rebuild_preconditioner(*impl_->inside); }
 std::string LinearSolver::description() const { return petsc_calls().description(*impl_->inside); }

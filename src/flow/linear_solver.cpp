@@ -88,6 +88,9 @@ struct LinearSolver::Impl {
   IS velocity = nullptr, pressure = nullptr;
   bool distributed = false;
   std::vector<PetscInt> starts, columns;  // the MPI matrix's CSR, kept for its updates
+  int nonzeros = 0;
+  std::vector<PetscScalar> buffer;  // MPI: the values between begin_assembly and the solve
+  PetscScalar* assembling = nullptr;  // one process: PETSc's array while it is out
   VecScatter gather = nullptr;            // the distributed solution to every process
   Vec whole = nullptr;
   bool reuse = false;
@@ -142,7 +145,12 @@ LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::str
     check(MatSetType(s.matrix, MATSEQAIJ), "MatSetType");
     check(MatSetBlockSize(s.matrix, block_size), "MatSetBlockSize");
     check(MatSeqAIJSetPreallocationCSR(s.matrix, s.starts.data(), s.columns.data(), nullptr), "preallocation");
+    std::vector<PetscInt>().swap(s.starts);  // the matrix has its own copy
+    std::vector<PetscInt>().swap(s.columns);
   }
+  // The pattern's columns are the matrix's (and, distributed, `columns`): kept once.
+  s.nonzeros = s.pattern.nonzeros();
+  std::vector<int>().swap(s.pattern.columns);
   check(MatSetOption(s.matrix, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
   check(MatCreateVecs(s.matrix, &s.solution, &s.rhs), "MatCreateVecs");
   if (s.distributed) check(VecScatterCreateToAll(s.solution, &s.gather, &s.whole), "VecScatterCreateToAll");
@@ -176,21 +184,44 @@ const SparsePattern& LinearSolver::pattern() const { return impl_->pattern; }
 
 SolveStats LinearSolver::solve(const std::vector<double>& values, const std::vector<double>& rhs,
                                std::vector<double>& x) {
+  VM_CHECK(static_cast<int>(values.size()) == impl_->nonzeros, "matrix values do not match the pattern");
+  std::memcpy(begin_assembly(), values.data(), values.size() * sizeof(double));
+  end_assembly();
+  return solve_assembled(rhs, x);
+}
+
+double* LinearSolver::begin_assembly() {
+  Impl& s = *impl_;
+  VM_CHECK(!s.assembling, "begin_assembly twice");
+  if (s.distributed) {
+    s.buffer.assign(s.nonzeros, 0.0);
+    return s.buffer.data();
+  }
+  check(MatSeqAIJGetArray(s.matrix, &s.assembling), "MatSeqAIJGetArray");
+  std::fill(s.assembling, s.assembling + s.nonzeros, 0.0);
+  return s.assembling;
+}
+
+void LinearSolver::end_assembly() {
+  Impl& s = *impl_;
+  if (s.distributed) {
+    const PetscInt n = s.pattern.rows, N = s.pattern.total_rows();
+    check(MatUpdateMPIAIJWithArrays(s.matrix, n, n, N, N, s.starts.data(), s.columns.data(), s.buffer.data()),
+          "MatUpdateMPIAIJWithArrays");
+    std::vector<PetscScalar>().swap(s.buffer);
+    return;
+  }
+  VM_CHECK(s.assembling, "end_assembly without begin_assembly");
+  check(MatSeqAIJRestoreArray(s.matrix, &s.assembling), "MatSeqAIJRestoreArray");
+  s.assembling = nullptr;
+}
+
+SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::vector<double>& x) {
   Impl& s = *impl_;
   const int n = s.pattern.rows;
   const int first = s.pattern.first_row, total = s.pattern.total_rows();
-  VM_CHECK(static_cast<int>(values.size()) == s.pattern.nonzeros(), "matrix values do not match the pattern");
+  VM_CHECK(!s.assembling, "solve_assembled before end_assembly");
   VM_CHECK(static_cast<int>(rhs.size()) == n && static_cast<int>(x.size()) == total, "vector sizes");
-  if (s.distributed) {
-    const PetscInt N = total;
-    check(MatUpdateMPIAIJWithArrays(s.matrix, n, n, N, N, s.starts.data(), s.columns.data(), values.data()),
-          "MatUpdateMPIAIJWithArrays");
-  } else {
-    PetscScalar* a = nullptr;
-    check(MatSeqAIJGetArray(s.matrix, &a), "MatSeqAIJGetArray");
-    std::memcpy(a, values.data(), values.size() * sizeof(double));
-    check(MatSeqAIJRestoreArray(s.matrix, &a), "MatSeqAIJRestoreArray");
-  }
 
   PetscScalar* v = nullptr;
   check(VecGetArray(s.rhs, &v), "VecGetArray");

@@ -53,11 +53,14 @@ inline std::string saddle_point_options() {
 // field split, its velocity block by SOR (PETSc's: local to each process under MPI), which
 // costs less to build and apply than ILU and needs as few iterations here. Measured on the
 // pipe (R 2, L 20 mm, 4 layers; bench/flow_scaling.sh), seconds a step per million unknowns
-// and iterations: 36k unknowns 2.9 (4-9), 86k 3.2, 220k 3.6, 420k 3.7 (3-8); the ILU of the
-// whole system it replaces took 6.4-7.4 and 12-57 iterations below 200k (its iterations grow
-// with the mesh), the split with ILU on the velocity 4.0 at 420k.
+// and iterations: 36k unknowns 2.9-3.1 (4-9), 86k 3.5-3.8, 220k 4.1-4.7, 420k 3.8-4.1 (3-7), two
+// runs; the ILU of the whole system it replaces took 6.4-7.4 and 12-57 iterations below 200k (its
+// iterations grow with the mesh), the split with ILU on the velocity 4.0 at 420k.
+// FGMRES restarts after 30 iterations: a time step takes under 10, and the vectors of a longer
+// solve (the Stokes start: 66 iterations at 420k unknowns) would stay allocated (2 a iteration;
+// 263 MB less peak memory there, for 71 iterations instead of 66).
 inline std::string time_step_options() {
-  return "-ksp_type fgmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 200 "
+  return "-ksp_type fgmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 30 "
          "-pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full "
          "-pc_fieldsplit_schur_precondition selfp "
          "-fieldsplit_u_ksp_type preonly -fieldsplit_u_pc_type sor "
@@ -83,12 +86,20 @@ class LinearSolver {
   LinearSolver(const LinearSolver&) = delete;
   LinearSolver& operator=(const LinearSolver&) = delete;
 
+  // The pattern's sizes and row offsets (its columns were handed to PETSc's matrix, not kept twice).
   const SparsePattern& pattern() const;
 
   // Solves A x = b for the matrix with `values` (this process's rows, in the pattern's order)
   // and `rhs` (this process's rows); `x` holds the whole initial guess on entry (total_rows) and
   // the whole solution on return, on every process.
   SolveStats solve(const std::vector<double>& values, const std::vector<double>& rhs, std::vector<double>& x);
+
+  // The same without a copy of the matrix: begin_assembly() gives the matrix's values in the
+  // pattern's order, zeroed (on one process PETSc's own array, so the matrix is held once; under
+  // MPI a buffer), end_assembly() hands them back, solve_assembled() solves with them.
+  double* begin_assembly();
+  void end_assembly();
+  SolveStats solve_assembled(const std::vector<double>& rhs, std::vector<double>& x);
 
   // Keep the preconditioner from one solve to the next while it still serves (a time step's
   // matrix changes little from the step before, and building ILU or AMG costs more than the few

@@ -64,7 +64,9 @@ struct NavierStokes::Impl {
   // Node graph (sorted neighbours, self included) and each tet's 16 positions in it.
   std::vector<int> node_start, node_columns;
   std::vector<std::array<int, 16>> tet_slots;
-  SparsePattern pattern;
+  SparsePattern pattern;  // sizes only (no columns: the solver has them)
+  int nonzeros = 0;       // this process's matrix entries
+  SparsePattern columns_pattern() const;
   std::vector<Boundary> boundaries;
   std::vector<char> fixed;  // per dof: Dirichlet
   std::unique_ptr<LinearSolver> solver;
@@ -85,7 +87,8 @@ struct NavierStokes::Impl {
   int step_count = 0;
   std::vector<Vec3> u, u_old;  // u^n, u^{n-1}
   std::vector<double> p;       // kinematic pressure p / rho
-  std::vector<double> values, rhs, x, dirichlet;
+  std::vector<double> rhs, x, dirichlet;
+  void make_solver();
   std::vector<double> resistance_pressure;  // per boundary: Pa / rho, from the last step's outflow
 
   int n() const { return static_cast<int>(points.size()); }
@@ -178,21 +181,29 @@ void NavierStokes::Impl::build(const TetMesh& mesh) {
   first_row = kBlock * node_begin;
   value_base = kBlock * kBlock * node_start[node_begin];
 
-  // The dof pattern: row (a, i) holds every neighbour's four components.
+  // The dof pattern's sizes; its columns are made when the solver is (columns_pattern()).
   pattern.rows = kBlock * (node_end - node_begin);
   pattern.first_row = first_row;
   pattern.global_rows = kBlock * nn;
-  pattern.row_start.assign(pattern.rows + 1, 0);
-  pattern.columns.resize(static_cast<size_t>(kBlock) * kBlock * (node_start[node_end] - node_start[node_begin]));
+  nonzeros = kBlock * kBlock * (node_start[node_end] - node_start[node_begin]);
+}
+
+// The dof pattern whole: row (a, i) holds every neighbour's four components. Made for the linear
+// solver, which keeps it (the assembly finds its places from the node graph).
+SparsePattern NavierStokes::Impl::columns_pattern() const {
+  SparsePattern full = pattern;
+  full.row_start.assign(pattern.rows + 1, 0);
+  full.columns.resize(nonzeros);
   for (int a = node_begin; a < node_end; ++a)
     for (int i = 0; i < kBlock; ++i) {
       const int row = kBlock * a + i - first_row;
       int at = value_index(a, i, node_start[a]);
-      pattern.row_start[row] = at;
+      full.row_start[row] = at;
       for (int k = node_start[a]; k < node_start[a + 1]; ++k)
-        for (int j = 0; j < kBlock; ++j) pattern.columns[at++] = kBlock * node_columns[k] + j;
-      pattern.row_start[row + 1] = at;
+        for (int j = 0; j < kBlock; ++j) full.columns[at++] = kBlock * node_columns[k] + j;
+      full.row_start[row + 1] = at;
     }
+  return full;
 }
 
 void NavierStokes::Impl::build_boundaries(const TetMesh& mesh) {
@@ -348,7 +359,8 @@ double NavierStokes::Impl::cfl(const std::vector<Vec3>& advect, double dt) const
 // mass_coefficient: alpha_0 / dt (0 for a steady solve); history: the BDF history over dt.
 void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::vector<Vec3>& history,
                                   double mass_coefficient, double dt) {
-  values.assign(pattern.nonzeros(), 0.0);
+  make_solver();
+  double* const values = solver->begin_assembly();  // the matrix's own values, zeroed
   rhs.assign(pattern.rows, 0.0);
   std::vector<double> diagonal(pattern.rows, 0.0);
   const double m = mass_coefficient;
@@ -455,21 +467,25 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
       values[value_index(a, i, slot(a, a)) + i] = d;
       rhs[row - first_row] = d * dirichlet[row];
     }
+  solver->end_assembly();
+}
+
+void NavierStokes::Impl::make_solver() {
+  if (solver) return;
+  solver = std::make_unique<LinearSolver>(columns_pattern(), kBlock,
+                                          fc.steady ? saddle_point_options() : time_step_options(), fc.petsc_options);
+  solver->reuse_preconditioner(!fc.steady && fc.reuse_preconditioner);
 }
 
 void NavierStokes::Impl::solve_system(StepReport& report, const std::string& where) {
-  if (!solver) {
-    solver = std::make_unique<LinearSolver>(pattern, kBlock, fc.steady ? saddle_point_options() : time_step_options(),
-                                            fc.petsc_options);
-    solver->reuse_preconditioner(!fc.steady && fc.reuse_preconditioner);
-  }
+
   x.assign(pattern.total_rows(), 0.0);
   for (int a = 0; a < n(); ++a) {
     for (int i = 0; i < 3; ++i) x[kBlock * a + i] = u[a][i];
     x[kBlock * a + 3] = p[a];
   }
   const auto start = Clock::now();
-  const SolveStats stats = solver->solve(values, rhs, x);
+  const SolveStats stats = solver->solve_assembled(rhs, x);
   report.solve_seconds += seconds_since(start);
   report.linear_iterations += stats.iterations;
   report.solves += 1;

@@ -16,6 +16,11 @@ extern "C" __attribute__((visibility("default"))) const vesselmesh::flow::PetscC
       [](const LinearSolver& solver) -> const SparsePattern& { return solver.pattern(); },
       [](LinearSolver& solver, const std::vector<double>& values, const std::vector<double>& rhs,
          std::vector<double>& x) { return solver.solve(values, rhs, x); },
+      [](LinearSolver& solver) { return solver.begin_assembly(); },
+      [](LinearSolver& solver) { solver.end_assembly(); },
+      [](LinearSolver& solver, const std::vector<double>& rhs, std::vector<double>& x) {
+        return solver.solve_assembled(rhs, x);
+      },
       [](LinearSolver& solver, bool on) { solver.reuse_preconditioner(on); },
       [](LinearSolver& solver) { solver.rebuild_preconditioner(); },
       [](const LinearSolver& solver) { return solver.description(); },

@@ -13,7 +13,7 @@ inline constexpr const char* kPetscModuleFile = "libvesselmesh-petsc.so";
 
 // The module's entry points: a LinearSolver made, used and destroyed inside the module; `layout`
 // first, as in io/gmsh_module.h (raise it when this table or a type it passes changes).
-inline constexpr int kPetscCallsLayout = 3;
+inline constexpr int kPetscCallsLayout = 4;
 struct PetscCalls {
   int layout;
   int (*process_count)();
@@ -26,6 +26,9 @@ struct PetscCalls {
   const SparsePattern& (*pattern)(const LinearSolver& solver);
   SolveStats (*solve)(LinearSolver& solver, const std::vector<double>& values, const std::vector<double>& rhs,
                       std::vector<double>& x);
+  double* (*begin_assembly)(LinearSolver& solver);
+  void (*end_assembly)(LinearSolver& solver);
+  SolveStats (*solve_assembled)(LinearSolver& solver, const std::vector<double>& rhs, std::vector<double>& x);
   void (*reuse_preconditioner)(LinearSolver& solver, bool on);
   void (*rebuild_preconditioner)(LinearSolver& solver);
   std::string (*description)(const LinearSolver& solver);

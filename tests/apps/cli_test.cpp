@@ -648,7 +648,7 @@ TEST(Cli, SimulateStoppedBySigtermGoesOnWithRestart) {
   // Started in the background, killed once its first checkpoint is there.
   const std::string command = "sh -c '" + std::string(VESSELMESH_PROGRAM) + " simulate " + tmp.path("case.toml") +
                               " -o " + tmp.path("run") + " -q 2>" + tmp.path("run.err") + " & pid=$!; " +
-                              "while [ ! -f " + tmp.path("run/checkpoint.bin") + " ]; do sleep 0.02; done; " +
+                              "while [ ! -f " + tmp.path("run/checkpoint.bin") + " ] && kill -0 $pid 2>/dev/null; do sleep 0.02; done; " +
                               "kill -TERM $pid; wait $pid; echo $? >" + tmp.path("code") + "'";
   ASSERT_EQ(std::system(command.c_str()), 0);
   EXPECT_EQ(read_text(tmp.path("code")), "143\n") << read_text(tmp.path("run.err"));
