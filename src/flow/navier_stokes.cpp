@@ -478,7 +478,6 @@ void NavierStokes::Impl::make_solver() {
 }
 
 void NavierStokes::Impl::solve_system(StepReport& report, const std::string& where) {
-
   x.assign(pattern.total_rows(), 0.0);
   for (int a = 0; a < n(); ++a) {
     for (int i = 0; i < 3; ++i) x[kBlock * a + i] = u[a][i];

@@ -264,6 +264,16 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   }
 
   const auto solve_start = Clock::now();
+  // The run's end (completed or stopped): its times, every process's memory, the summary.
+  const auto finish = [&](const char* status) {
+    summary.status = status;
+    summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    const double solving = std::chrono::duration<double>(Clock::now() - solve_start).count();
+    summary.seconds_per_step = summary.steps > first_step ? solving / (summary.steps - first_step) : 0.0;
+    gather_memory();
+    write_summary();
+  };
+
   try {
     if (fc.steady) {
       const StepReport r = ns.solve_steady();
@@ -303,16 +313,9 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
         if (stop || k + 1 == steps || (fc.checkpoint_every > 0 && r.step % fc.checkpoint_every == 0))
           write_checkpoint_now();
         if (stop) {
-          summary.status = "stopped";
           summary.signal = stop_signal != 0 ? static_cast<int>(stop_signal) : SIGTERM;
-          summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-          summary.seconds_per_step =
-              r.step > first_step ? std::chrono::duration<double>(Clock::now() - solve_start).count() /
-                                        (r.step - first_step)
-                                  : 0.0;
           if (writer) io::write_text(output_dir + "/log.csv", log);
-          gather_memory();
-          write_summary();
+          finish("stopped");
           reporter.warning(fmt::format("stopped by signal {} after step {} (t = {:g} s); the checkpoint {} holds it: "
                                        "'vesselmesh simulate {} -o {} --restart' goes on",
                                        summary.signal, r.step, r.time, checkpoint_path, fc.path, output_dir));
@@ -329,12 +332,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     throw;
   }
   write_indices();
-  summary.status = "completed";
-  summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  const double solving = std::chrono::duration<double>(Clock::now() - solve_start).count();
-  summary.seconds_per_step = summary.steps > first_step ? solving / (summary.steps - first_step) : 0.0;
-  gather_memory();
-  write_summary();
+  finish("completed");
   return summary;
 }
 

@@ -137,8 +137,8 @@ int split_long_edges(TriMesh& wall, std::vector<double>& radius, const std::vect
       radius.push_back(0.5 * (radius[a] + radius[b]));
     }
     const Triangle f = wall.triangles[t];
-    int i = 0;  // f[i] -> f[i + 1] is the edge
-    while (!((f[i] == a && f[(i + 1) % 3] == b) || (f[i] == b && f[(i + 1) % 3] == a))) ++i;
+    const auto& sides = edges.triangle_edges[t];
+    const int i = static_cast<int>(std::find(sides.begin(), sides.end(), e) - sides.begin());  // f[i] -> f[i + 1]
     const int p = f[i], q = f[(i + 1) % 3], r = f[(i + 2) % 3], m = midpoint[e];
     wall.triangles[t] = {p, m, r};
     wall.triangles.push_back({m, q, r});
