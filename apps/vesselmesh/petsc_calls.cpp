@@ -25,6 +25,13 @@ int process_count() { return petsc_calls().process_count(); }
 int process_rank() { return petsc_calls().process_rank(); }
 bool any_process(bool flag) { return petsc_calls().any_process(flag); }
 std::vector<double> gather_all(double value) { return petsc_calls().gather_all(value); }
+std::vector<double> sum_all(std::vector<double> values) { return petsc_calls().sum_all(std::move(values)); }
+std::vector<double> gather_to_first(const std::vector<double>& values) {
+  return petsc_calls().gather_to_first(values);
+}
+std::vector<int> partition_graph(const std::vector<int>& start, const std::vector<int>& neighbours, int total) {
+  return petsc_calls().partition_graph(start, neighbours, total);
+}
 
 LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::string& defaults,
                            const std::string& options)
@@ -43,7 +50,7 @@ SolveStats LinearSolver::solve(const std::vector<double>& values, const std::vec
   return petsc_calls().solve(*impl_->inside, values, rhs, x);
 }
 
-double* LinearSolver::begin_assembly() { return petsc_calls().begin_assembly(*impl_->inside); }
+MatrixValues LinearSolver::begin_assembly() { return petsc_calls().begin_assembly(*impl_->inside); }
 void LinearSolver::end_assembly() { petsc_calls().end_assembly(*impl_->inside); }
 SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::vector<double>& x) {
   return petsc_calls().solve_assembled(*impl_->inside, rhs, x);

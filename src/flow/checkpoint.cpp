@@ -55,6 +55,7 @@ class Reader {
  public:
   Reader(std::string text, std::string path) : text_(std::move(text)), path_(std::move(path)) {}
   void bytes(void* data, size_t n) {
+    if (n == 0) return;
     if (n > text_.size() - at_)
       throw InputError(fmt::format("{}: the checkpoint is cut short (at byte {} of {}): it was not written whole; "
                                    "run the case again without --restart",

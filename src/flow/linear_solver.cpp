@@ -4,10 +4,13 @@
 
 #include <fmt/format.h>
 #include <petscksp.h>
+// After PETSc's headers (scotch.h needs <cstdio> and <cstdint>, which they bring).
+#include <scotch.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <type_traits>
 
 namespace vesselmesh::flow {
 namespace {
@@ -79,6 +82,75 @@ std::vector<double> gather_all(double value) {
   return all;
 }
 
+std::vector<double> sum_all(std::vector<double> values) {
+  ensure_petsc();
+  if (process_count() > 1)
+    MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM,
+                  PETSC_COMM_WORLD);
+  return values;
+}
+
+std::vector<double> gather_to_first(const std::vector<double>& values) {
+  ensure_petsc();
+  const int ranks = process_count(), rank = process_rank();
+  if (ranks == 1) return values;
+  const int mine = static_cast<int>(values.size());
+  std::vector<int> counts(ranks), offsets(ranks, 0);
+  MPI_Gather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, PETSC_COMM_WORLD);
+  std::vector<double> all;
+  if (rank == 0) {
+    for (int r = 1; r < ranks; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+    all.resize(static_cast<size_t>(offsets[ranks - 1]) + counts[ranks - 1]);
+  }
+  MPI_Gatherv(values.data(), mine, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, 0,
+              PETSC_COMM_WORLD);
+  return all;
+}
+
+std::vector<int> partition_graph(const std::vector<int>& start, const std::vector<int>& neighbours, int total) {
+  ensure_petsc();
+  const int ranks = process_count();
+  std::vector<int> parts(total, 0);
+  if (ranks == 1) return parts;
+  if (process_rank() == 0) {
+    // PT-Scotch on this one process (the graph is whole here; MatPartitioning takes it spread over
+    // the processes as well). Debian's Scotch seeds from the clock and runs threads that race
+    // (the same graph cut apart differently from run to run): one thread, a fixed seed.
+    VM_CHECK(static_cast<int>(start.size()) == total + 1, "the whole graph on the first process");
+    setenv("SCOTCH_PTHREAD_NUMBER", "1", 1);
+    SCOTCH_randomSeed(1);
+    SCOTCH_randomReset();
+    // The adjacency without its diagonal, in arrays PETSc frees with the matrix.
+    PetscInt *ia = nullptr, *ja = nullptr;
+    check(PetscMalloc1(total + 1, &ia), "PetscMalloc1");
+    check(PetscMalloc1(std::max<size_t>(neighbours.size(), 1), &ja), "PetscMalloc1");
+    ia[0] = 0;
+    for (int r = 0; r < total; ++r) {
+      ia[r + 1] = ia[r];
+      for (int k = start[r]; k < start[r + 1]; ++k)
+        if (neighbours[k] != r) ja[ia[r + 1]++] = neighbours[k];
+    }
+    Mat adjacency = nullptr;
+    check(MatCreateMPIAdj(PETSC_COMM_SELF, total, total, ia, ja, nullptr, &adjacency), "MatCreateMPIAdj");
+    MatPartitioning partitioning = nullptr;
+    IS owners = nullptr;
+    check(MatPartitioningCreate(PETSC_COMM_SELF, &partitioning), "MatPartitioningCreate");
+    check(MatPartitioningSetAdjacency(partitioning, adjacency), "MatPartitioningSetAdjacency");
+    check(MatPartitioningSetType(partitioning, MATPARTITIONINGPTSCOTCH), "MatPartitioningSetType (PT-Scotch)");
+    check(MatPartitioningSetNParts(partitioning, ranks), "MatPartitioningSetNParts");
+    check(MatPartitioningApply(partitioning, &owners), "MatPartitioningApply (PT-Scotch)");
+    const PetscInt* owner = nullptr;
+    check(ISGetIndices(owners, &owner), "ISGetIndices");
+    std::copy(owner, owner + total, parts.begin());
+    check(ISRestoreIndices(owners, &owner), "ISRestoreIndices");
+    ISDestroy(&owners);
+    MatPartitioningDestroy(&partitioning);
+    MatDestroy(&adjacency);
+  }
+  MPI_Bcast(parts.data(), total, MPI_INT, 0, PETSC_COMM_WORLD);
+  return parts;
+}
+
 struct LinearSolver::Impl {
   SparsePattern pattern;
   int block_size = 1;
@@ -87,19 +159,22 @@ struct LinearSolver::Impl {
   KSP ksp = nullptr;
   IS velocity = nullptr, pressure = nullptr;
   bool distributed = false;
-  std::vector<PetscInt> starts, columns;  // the MPI matrix's CSR, kept for its updates
   int nonzeros = 0;
-  std::vector<PetscScalar> buffer;  // MPI: the values between begin_assembly and the solve
-  PetscScalar* assembling = nullptr;  // one process: PETSc's array while it is out
-  VecScatter gather = nullptr;            // the distributed solution to every process
-  Vec whole = nullptr;
+  // MPI: the blocks of the process's rows in its own and in the others' columns (PETSc's), and
+  // per row where its own columns begin in it and how many there are.
+  Mat own_block = nullptr, other_block = nullptr;
+  int own_nonzeros = 0;
+  std::vector<int> own_begin, own_count;
+  MatrixValues assembling;  // PETSc's arrays while they are out
+  VecScatter ghosts = nullptr;  // MPI: the solution's ghost rows to this process
+  Vec ghost_values = nullptr;
   bool reuse = false;
   int built_iterations = -1;  // iterations of the last solve that built the preconditioner; -1: build next
   int last_iterations = 0;
 
   ~Impl() {
-    if (gather) VecScatterDestroy(&gather);
-    if (whole) VecDestroy(&whole);
+    if (ghosts) VecScatterDestroy(&ghosts);
+    if (ghost_values) VecDestroy(&ghost_values);
     if (velocity) ISDestroy(&velocity);
     if (pressure) ISDestroy(&pressure);
     if (ksp) KSPDestroy(&ksp);
@@ -131,29 +206,56 @@ LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::str
   const PetscInt N = s.pattern.total_rows();
   s.distributed = process_count() > 1;
   const MPI_Comm comm = s.distributed ? PETSC_COMM_WORLD : PETSC_COMM_SELF;
-  s.starts.assign(s.pattern.row_start.begin(), s.pattern.row_start.end());
-  s.columns.assign(s.pattern.columns.begin(), s.pattern.columns.end());
+  VM_CHECK(s.distributed || (N == n && s.pattern.first_row == 0), "one process holds every row");
+  check(MatCreate(comm, &s.matrix), "MatCreate");
+  check(MatSetSizes(s.matrix, n, n, N, N), "MatSetSizes");
+  check(MatSetType(s.matrix, s.distributed ? MATMPIAIJ : MATSEQAIJ), "MatSetType");
+  check(MatSetBlockSize(s.matrix, block_size), "MatSetBlockSize");
+  static_assert(std::is_same_v<PetscInt, int>, "PETSc with 32-bit indices, as the pattern's");
+  if (s.distributed)
+    check(MatMPIAIJSetPreallocationCSR(s.matrix, s.pattern.row_start.data(), s.pattern.columns.data(), nullptr),
+          "preallocation");
+  else
+    check(MatSeqAIJSetPreallocationCSR(s.matrix, s.pattern.row_start.data(), s.pattern.columns.data(), nullptr),
+          "preallocation");
   if (s.distributed) {
-    std::vector<PetscScalar> zeros(s.columns.size(), 0.0);
-    check(MatCreateMPIAIJWithArrays(comm, n, n, N, N, s.starts.data(), s.columns.data(), zeros.data(), &s.matrix),
-          "MatCreateMPIAIJWithArrays");
-    check(MatSetBlockSize(s.matrix, block_size), "MatSetBlockSize");
-  } else {
-    VM_CHECK(N == n && s.pattern.first_row == 0, "one process holds every row");
-    check(MatCreate(comm, &s.matrix), "MatCreate");
-    check(MatSetSizes(s.matrix, n, n, n, n), "MatSetSizes");
-    check(MatSetType(s.matrix, MATSEQAIJ), "MatSetType");
-    check(MatSetBlockSize(s.matrix, block_size), "MatSetBlockSize");
-    check(MatSeqAIJSetPreallocationCSR(s.matrix, s.starts.data(), s.columns.data(), nullptr), "preallocation");
-    std::vector<PetscInt>().swap(s.starts);  // the matrix has its own copy
-    std::vector<PetscInt>().swap(s.columns);
+    // Each row's own columns (sorted, consecutive in it) and PETSc's two blocks of them.
+    const int first = s.pattern.first_row;
+    s.own_begin.resize(n);
+    s.own_count.resize(n);
+    for (int r = 0; r < n; ++r) {
+      const auto row = s.pattern.columns.begin() + s.pattern.row_start[r],
+                 end = s.pattern.columns.begin() + s.pattern.row_start[r + 1];
+      const auto begin_own = std::lower_bound(row, end, first), end_own = std::lower_bound(row, end, first + n);
+      s.own_begin[r] = static_cast<int>(begin_own - row);
+      s.own_count[r] = static_cast<int>(end_own - begin_own);
+      s.own_nonzeros += s.own_count[r];
+    }
+    check(MatMPIAIJGetSeqAIJ(s.matrix, &s.own_block, &s.other_block, nullptr), "MatMPIAIJGetSeqAIJ");
+    MatInfo own{}, other{};
+    check(MatGetInfo(s.own_block, MAT_LOCAL, &own), "MatGetInfo");
+    check(MatGetInfo(s.other_block, MAT_LOCAL, &other), "MatGetInfo");
+    VM_CHECK(static_cast<int>(own.nz_used) == s.own_nonzeros &&
+                 static_cast<int>(other.nz_used) == s.pattern.nonzeros() - s.own_nonzeros,
+             "PETSc's blocks are the pattern's");
   }
-  // The pattern's columns are the matrix's (and, distributed, `columns`): kept once.
+  // The pattern's columns are the matrix's: kept once.
   s.nonzeros = s.pattern.nonzeros();
   std::vector<int>().swap(s.pattern.columns);
   check(MatSetOption(s.matrix, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
   check(MatCreateVecs(s.matrix, &s.solution, &s.rhs), "MatCreateVecs");
-  if (s.distributed) check(VecScatterCreateToAll(s.solution, &s.gather, &s.whole), "VecScatterCreateToAll");
+  if (s.distributed) {
+    const std::vector<PetscInt> rows(s.pattern.ghost_rows.begin(), s.pattern.ghost_rows.end());
+    IS wanted = nullptr;
+    check(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(rows.size()), rows.data(), PETSC_COPY_VALUES, &wanted),
+          "ISCreateGeneral");
+    check(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(rows.size()), &s.ghost_values), "VecCreateSeq");
+    const PetscErrorCode code = VecScatterCreate(s.solution, wanted, s.ghost_values, nullptr, &s.ghosts);
+    ISDestroy(&wanted);
+    check(code, "VecScatterCreate (ghost rows)");
+  } else {
+    VM_CHECK(s.pattern.ghost_rows.empty(), "ghost rows on one process");
+  }
 
   check(KSPCreate(comm, &s.ksp), "KSPCreate");
   check(KSPSetOperators(s.ksp, s.matrix, s.matrix), "KSPSetOperators");
@@ -184,51 +286,68 @@ const SparsePattern& LinearSolver::pattern() const { return impl_->pattern; }
 
 SolveStats LinearSolver::solve(const std::vector<double>& values, const std::vector<double>& rhs,
                                std::vector<double>& x) {
-  VM_CHECK(static_cast<int>(values.size()) == impl_->nonzeros, "matrix values do not match the pattern");
-  std::memcpy(begin_assembly(), values.data(), values.size() * sizeof(double));
+  const Impl& s = *impl_;
+  VM_CHECK(static_cast<int>(values.size()) == s.nonzeros, "matrix values do not match the pattern");
+  const MatrixValues m = begin_assembly();
+  if (!s.distributed) {
+    std::copy(values.begin(), values.end(), m.own);
+  } else {
+    double *own = m.own, *other = m.other;
+    for (int r = 0; r < s.pattern.rows; ++r) {
+      const double* row = values.data() + s.pattern.row_start[r];
+      const int length = s.pattern.row_start[r + 1] - s.pattern.row_start[r];
+      other = std::copy(row, row + s.own_begin[r], other);
+      own = std::copy(row + s.own_begin[r], row + s.own_begin[r] + s.own_count[r], own);
+      other = std::copy(row + s.own_begin[r] + s.own_count[r], row + length, other);
+    }
+  }
   end_assembly();
   return solve_assembled(rhs, x);
 }
 
-double* LinearSolver::begin_assembly() {
+MatrixValues LinearSolver::begin_assembly() {
   Impl& s = *impl_;
-  VM_CHECK(!s.assembling, "begin_assembly twice");
+  VM_CHECK(!s.assembling.own, "begin_assembly twice");
   if (s.distributed) {
-    s.buffer.assign(s.nonzeros, 0.0);
-    return s.buffer.data();
+    check(MatSeqAIJGetArray(s.own_block, &s.assembling.own), "MatSeqAIJGetArray");
+    check(MatSeqAIJGetArray(s.other_block, &s.assembling.other), "MatSeqAIJGetArray");
+    std::fill(s.assembling.own, s.assembling.own + s.own_nonzeros, 0.0);
+    std::fill(s.assembling.other, s.assembling.other + (s.nonzeros - s.own_nonzeros), 0.0);
+  } else {
+    check(MatSeqAIJGetArray(s.matrix, &s.assembling.own), "MatSeqAIJGetArray");
+    std::fill(s.assembling.own, s.assembling.own + s.nonzeros, 0.0);
   }
-  check(MatSeqAIJGetArray(s.matrix, &s.assembling), "MatSeqAIJGetArray");
-  std::fill(s.assembling, s.assembling + s.nonzeros, 0.0);
   return s.assembling;
 }
 
 void LinearSolver::end_assembly() {
   Impl& s = *impl_;
+  VM_CHECK(s.assembling.own, "end_assembly without begin_assembly");
   if (s.distributed) {
-    const PetscInt n = s.pattern.rows, N = s.pattern.total_rows();
-    check(MatUpdateMPIAIJWithArrays(s.matrix, n, n, N, N, s.starts.data(), s.columns.data(), s.buffer.data()),
-          "MatUpdateMPIAIJWithArrays");
-    std::vector<PetscScalar>().swap(s.buffer);
-    return;
+    check(MatSeqAIJRestoreArray(s.own_block, &s.assembling.own), "MatSeqAIJRestoreArray");
+    check(MatSeqAIJRestoreArray(s.other_block, &s.assembling.other), "MatSeqAIJRestoreArray");
+    // The whole matrix changed (its preconditioner and field split see it by its state): an
+    // assembly with nothing to send says so.
+    check(MatAssemblyBegin(s.matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    check(MatAssemblyEnd(s.matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  } else {
+    check(MatSeqAIJRestoreArray(s.matrix, &s.assembling.own), "MatSeqAIJRestoreArray");
   }
-  VM_CHECK(s.assembling, "end_assembly without begin_assembly");
-  check(MatSeqAIJRestoreArray(s.matrix, &s.assembling), "MatSeqAIJRestoreArray");
-  s.assembling = nullptr;
+  s.assembling = MatrixValues{};
 }
 
 SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::vector<double>& x) {
   Impl& s = *impl_;
   const int n = s.pattern.rows;
-  const int first = s.pattern.first_row, total = s.pattern.total_rows();
-  VM_CHECK(!s.assembling, "solve_assembled before end_assembly");
-  VM_CHECK(static_cast<int>(rhs.size()) == n && static_cast<int>(x.size()) == total, "vector sizes");
+  VM_CHECK(!s.assembling.own, "solve_assembled before end_assembly");
+  VM_CHECK(static_cast<int>(rhs.size()) == n && x.size() == n + s.pattern.ghost_rows.size(), "vector sizes");
 
   PetscScalar* v = nullptr;
   check(VecGetArray(s.rhs, &v), "VecGetArray");
   std::memcpy(v, rhs.data(), rhs.size() * sizeof(double));
   check(VecRestoreArray(s.rhs, &v), "VecRestoreArray");
   check(VecGetArray(s.solution, &v), "VecGetArray");
-  std::memcpy(v, x.data() + first, static_cast<size_t>(n) * sizeof(double));
+  std::memcpy(v, x.data(), static_cast<size_t>(n) * sizeof(double));
   check(VecRestoreArray(s.solution, &v), "VecRestoreArray");
 
   // Reuse the preconditioner while the solve before did not take much more than the one
@@ -253,7 +372,7 @@ SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::ve
     if (reason <= 0) {  // the old preconditioner no longer serves: start again with a new one
       check(KSPGetIterationNumber(s.ksp, &failed_iterations), "KSPGetIterationNumber");
       check(VecGetArray(s.solution, &v), "VecGetArray");
-      std::memcpy(v, x.data() + first, static_cast<size_t>(n) * sizeof(double));
+      std::memcpy(v, x.data(), static_cast<size_t>(n) * sizeof(double));
       check(VecRestoreArray(s.solution, &v), "VecRestoreArray");
       check(KSPSetReusePreconditioner(s.ksp, PETSC_FALSE), "KSPSetReusePreconditioner");
       check(KSPSolve(s.ksp, s.rhs, s.solution), "KSPSolve");
@@ -261,16 +380,17 @@ SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::ve
     }
   }
 
-  Vec result = s.solution;
-  if (s.distributed) {
-    check(VecScatterBegin(s.gather, s.solution, s.whole, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-    check(VecScatterEnd(s.gather, s.solution, s.whole, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-    result = s.whole;
-  }
   const PetscScalar* r = nullptr;
-  check(VecGetArrayRead(result, &r), "VecGetArrayRead");
-  std::memcpy(x.data(), r, x.size() * sizeof(double));
-  check(VecRestoreArrayRead(result, &r), "VecRestoreArrayRead");
+  check(VecGetArrayRead(s.solution, &r), "VecGetArrayRead");
+  std::memcpy(x.data(), r, static_cast<size_t>(n) * sizeof(double));
+  check(VecRestoreArrayRead(s.solution, &r), "VecRestoreArrayRead");
+  if (s.distributed) {  // the ghosts' values from the processes that own them
+    check(VecScatterBegin(s.ghosts, s.solution, s.ghost_values, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    check(VecScatterEnd(s.ghosts, s.solution, s.ghost_values, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+    check(VecGetArrayRead(s.ghost_values, &r), "VecGetArrayRead");
+    std::memcpy(x.data() + n, r, s.pattern.ghost_rows.size() * sizeof(double));
+    check(VecRestoreArrayRead(s.ghost_values, &r), "VecRestoreArrayRead");
+  }
 
   SolveStats stats;
   PetscInt iterations = 0;

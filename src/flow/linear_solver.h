@@ -17,13 +17,16 @@ namespace vesselmesh::flow {
 
 // Compressed rows with sorted (global) column indices; `values` of a matrix follow this order.
 // On several MPI processes each holds its own consecutive rows: `first_row` .. first_row + rows
-// of `global_rows` (the whole matrix on one process: first_row 0, global_rows = rows).
+// of `global_rows` (the whole matrix on one process: first_row 0, global_rows = rows), and
+// reads the solution at its `ghost_rows` too (rows other processes own: the unknowns of its
+// cells' points that it does not own).
 struct SparsePattern {
   int rows = 0;
   int first_row = 0;
   int global_rows = 0;  // 0: rows
   std::vector<int> row_start;  // rows + 1 offsets
   std::vector<int> columns;
+  std::vector<int> ghost_rows;  // global rows, in the order the solution holds them after its own
   int nonzeros() const { return static_cast<int>(columns.size()); }
   int total_rows() const { return global_rows > 0 ? global_rows : rows; }
 };
@@ -77,6 +80,28 @@ int process_rank();
 bool any_process(bool flag);
 // Every process's `value`, in rank order (every process calls it).
 std::vector<double> gather_all(double value);
+// The sums over the processes of `values` (as long on every process), on every process.
+std::vector<double> sum_all(std::vector<double> values);
+// Every process's `values` one after the other in rank order, on the first process (empty on
+// the others).
+std::vector<double> gather_to_first(const std::vector<double>& values);
+// Graph partitioning (PT-Scotch, through PETSc's MatPartitioning): the points of a graph split
+// among the processes, as many parts as processes, balanced in points (within 1 %), with few edges
+// cut. The first process gives the whole graph (rows `start`, `neighbours` by number, itself
+// possibly among them; the others give nothing) and partitions it alone, on one thread with a
+// fixed seed: the same graph on as many processes gives the same parts, run after run. Returns
+// every point's process, on every process; on one process all 0.
+std::vector<int> partition_graph(const std::vector<int>& start, const std::vector<int>& neighbours, int total);
+
+// A process's matrix values between LinearSolver::begin_assembly() and end_assembly(), in
+// PETSc's own arrays: per row its entries in the columns this process owns (`own`) and in the
+// others' (`other`), each part in the pattern's order, row after row. (The pattern's row, its
+// columns sorted, is its others' columns left of its own, its own, then its others' right of
+// them.) On one process `other` is empty.
+struct MatrixValues {
+  double* own = nullptr;
+  double* other = nullptr;
+};
 
 class LinearSolver {
  public:
@@ -90,14 +115,14 @@ class LinearSolver {
   const SparsePattern& pattern() const;
 
   // Solves A x = b for the matrix with `values` (this process's rows, in the pattern's order)
-  // and `rhs` (this process's rows); `x` holds the whole initial guess on entry (total_rows) and
-  // the whole solution on return, on every process.
+  // and `rhs` (this process's rows); `x` holds this process's rows then its ghost rows: the
+  // initial guess on entry (its own rows), the solution on return (its own rows and ghosts).
   SolveStats solve(const std::vector<double>& values, const std::vector<double>& rhs, std::vector<double>& x);
 
-  // The same without a copy of the matrix: begin_assembly() gives the matrix's values in the
-  // pattern's order, zeroed (on one process PETSc's own array, so the matrix is held once; under
-  // MPI a buffer), end_assembly() hands them back, solve_assembled() solves with them.
-  double* begin_assembly();
+  // The same without a copy of the matrix: begin_assembly() gives PETSc's own arrays of the
+  // matrix's values, zeroed (the matrix is held once), end_assembly() hands them back,
+  // solve_assembled() solves with them.
+  MatrixValues begin_assembly();
   void end_assembly();
   SolveStats solve_assembled(const std::vector<double>& rhs, std::vector<double>& x);
 

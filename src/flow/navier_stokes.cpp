@@ -11,6 +11,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <type_traits>
 
 namespace vesselmesh::flow {
 namespace {
@@ -28,7 +29,7 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// What a boundary triangle needs: its points, outward unit normal and area (SI).
+// What a boundary triangle needs: its (local) points, outward unit normal and area (SI).
 struct BoundaryFace {
   Triangle v;
   Vec3 normal;
@@ -39,7 +40,8 @@ struct BoundaryFace {
 struct Boundary {
   BoundaryCondition condition;
   std::vector<BoundaryFace> faces;
-  std::vector<int> nodes;  // every point of its faces
+  std::vector<int> nodes;  // every local point on it
+  std::vector<char> counted;  // per face: this process counts it in sums (it owns its first point)
   double area = 0.0;
   Vec3 center = Vec3::Zero(), normal = Vec3::Zero();  // area-weighted, outward
   std::vector<double> shape;  // velocity boundaries: per node of `nodes`, unit flux, 0 on walls
@@ -56,33 +58,49 @@ struct NavierStokes::Impl {
   FlowCase fc;
   const Reporter* reporter = nullptr;
   double nu = 0.0;  // kinematic viscosity m2/s
-  std::vector<Vec3> points;  // m
-  std::vector<Tet> tets;
+
+  // Numberings. The solver's (global) numbering of the points: the mesh's points split among the
+  // processes by PT-Scotch (partition_graph over the point graph), each process's points a
+  // consecutive range, in reverse Cuthill-McKee order inside it (neighbours near each other in
+  // memory); on one process the RCM order. A process holds its cells (those with a point it owns)
+  // and their points, numbered locally: its own points first (global node_begin + local), then
+  // its ghosts (the others' points of its cells), by global number. Everything inside is local;
+  // the public interface is in the mesh's numbering.
+  int total_points = 0;
+  std::vector<int> process_begin;      // per process its first global point; one more: the total
+  std::vector<int> local_global;       // per local point its global number
+  std::vector<int> mesh_point;         // per local point its mesh number
+  std::vector<int> global_mesh_point;  // on the first process: per global point its mesh number
+  int owned = 0;                       // local points 0 .. owned - 1 are this process's
+  int node_begin = 0;                  // the global number of local point 0
+  bool owns(int a) const { return a < owned; }
+
+  std::vector<Vec3> points;  // m, per local point
+  std::vector<Tet> tets;     // this process's cells, local numbers
   std::vector<std::array<Vec3, 4>> gradients;
   std::vector<double> volumes;
   std::vector<double> least_height;
-  // Node graph (sorted neighbours, self included) and each tet's 16 positions in it.
+  // Node graph of the owned points (sorted global neighbours, self included) and each cell's
+  // positions in it (rows of owned points only; -1 elsewhere).
   std::vector<int> node_start, node_columns;
   std::vector<std::array<int, 16>> tet_slots;
-  SparsePattern pattern;  // sizes only (no columns: the solver has them)
+  SparsePattern pattern;  // sizes and ghost rows (no columns: the solver has them)
   int nonzeros = 0;       // this process's matrix entries
   SparsePattern columns_pattern() const;
   std::vector<Boundary> boundaries;
-  std::vector<char> fixed;  // per dof: Dirichlet
+  std::vector<char> fixed;  // per local dof: Dirichlet
   std::unique_ptr<LinearSolver> solver;
 
-  // The solver's own numbering of the points (mesh::cuthill_mckee_order: neighbours near each
-  // other in memory, and each process's consecutive range a compact piece of the lumen):
-  // mesh_point[k] is the mesh's number of point k; everything inside is in this numbering, the
-  // public interface in the mesh's.
-  std::vector<int> mesh_point;
-  std::vector<Vec3> u_mesh;  // u in the mesh's numbering (velocity())
-  void publish() {
-    u_mesh.resize(u.size());
-    for (size_t k = 0; k < u.size(); ++k) u_mesh[mesh_point[k]] = u[k];
-  }
+  // The first process's copy of the whole flow in the mesh's numbering (velocity(), pressure()),
+  // gathered after every solve.
+  std::vector<Vec3> u_mesh;
+  std::vector<double> p_mesh;  // Pa
+  void publish();
+  // The whole of per-point values (`width` a point, this process's own points) on the first
+  // process, in the mesh's numbering.
+  std::vector<double> gather_points(const std::vector<double>& mine, int width) const;
 
-  // State.
+  // State, per local point.
   double t = 0.0;
   int step_count = 0;
   std::vector<Vec3> u, u_old;  // u^n, u^{n-1}
@@ -93,30 +111,41 @@ struct NavierStokes::Impl {
 
   int n() const { return static_cast<int>(points.size()); }
 
-  // This process's rows: the points node_begin .. node_end (all of them on one process).
-  int node_begin = 0, node_end = 0, first_row = 0, value_base = 0;
-  bool owns(int a) const { return a >= node_begin && a < node_end; }
-
-  // Offset (among this process's values) of entry (node a's component i, node b's component
-  // j) from a's position k of b, j = 0.
+  // Offset (among this process's values in the pattern's order) of entry (owned node a's
+  // component i, node b's component j) from a's position k of b, j = 0.
   int value_index(int a, int i, int k) const {
     const int degree = node_start[a + 1] - node_start[a];
-    return kBlock * kBlock * node_start[a] + i * kBlock * degree + kBlock * (k - node_start[a]) - value_base;
+    return kBlock * kBlock * node_start[a] + i * kBlock * degree + kBlock * (k - node_start[a]);
   }
-  // Position of b among a's neighbours in the node graph.
+  // The same in PETSc's arrays (MatrixValues: the entries in the columns of owned points and in
+  // the others', apart): per owned node its first value in each, per node-graph position its
+  // place among the node's owned (or other) neighbours, times kBlock.
+  std::vector<int> own_start, other_start, place;
+  MatrixValues values;  // during the assembly
+  bool owned_global(int g) const { return g >= node_begin && g < node_begin + owned; }
+  double* entry(int a, int i, int k) const {
+    if (owned_global(node_columns[k])) {
+      const int width = (own_start[a + 1] - own_start[a]) / kBlock;  // kBlock x the owned neighbours
+      return values.own + own_start[a] + i * width + place[k];
+    }
+    const int width = (other_start[a + 1] - other_start[a]) / kBlock;
+    return values.other + other_start[a] + i * width + place[k];
+  }
+  // Position of local point b among owned point a's neighbours in the node graph.
   int slot(int a, int b) const {
     const auto first = node_columns.begin() + node_start[a], last = node_columns.begin() + node_start[a + 1];
-    return static_cast<int>(std::lower_bound(first, last, b) - node_columns.begin());
+    return static_cast<int>(std::lower_bound(first, last, local_global[b]) - node_columns.begin());
   }
 
   void build(const TetMesh& mesh);
-  void build_boundaries(const TetMesh& mesh);
+  void build_boundaries(const TetMesh& ordered);
   void set_dirichlet(double time);
   void assemble(const std::vector<Vec3>& advect, const std::vector<Vec3>& history, double mass_coefficient,
                 double dt);
   void solve_system(StepReport& report, const std::string& where);
   double cfl(const std::vector<Vec3>& advect, double dt) const;
-  double flux(const Boundary& b, const std::vector<Vec3>& velocity) const;
+  // Every boundary's flux (m3/s) of `velocity`, summed over the processes (every process calls it).
+  std::vector<double> fluxes(const std::vector<Vec3>& velocity) const;
   // The resistance boundaries' pressure (over rho) from the current outflow.
   void update_resistance();
   // Copies the solved x into velocity and pressure; returns the velocity's relative change.
@@ -124,12 +153,113 @@ struct NavierStokes::Impl {
   void check_finite(const StepReport& report) const;
 };
 
+namespace {
+
+// Every tetrahedron's orientation checked on the whole mesh (every process the same: a bad cell
+// stops them all alike).
+void check_orientation(const TetMesh& mesh, const std::vector<Tet>& tets, const std::string& path) {
+  for (const Tet& t4 : tets) {
+    const double v6 = mesh::tet_volume6(mesh.points[t4[0]], mesh.points[t4[1]], mesh.points[t4[2]], mesh.points[t4[3]]);
+    if (!(v6 > 0.0))
+      throw InputError(fmt::format("{}: the tetrahedron of points {}, {}, {}, {} is inverted or flat (six times its "
+                                   "volume {:.3g} in mesh units, at ({:.4g}, {:.4g}, {:.4g})): mend the mesh first",
+                                   path, t4[0], t4[1], t4[2], t4[3], v6, mesh.points[t4[0]].x(),
+                                   mesh.points[t4[0]].y(), mesh.points[t4[0]].z()));
+  }
+}
+
+}  // namespace
+
 void NavierStokes::Impl::build(const TetMesh& mesh) {
+  total_points = mesh.num_points();
+  {
+    const std::vector<Tet> all = mesh::all_tetrahedra(mesh);
+    if (all.empty()) throw InputError(fmt::format("{}: the mesh has no tetrahedra", fc.mesh));
+    check_orientation(mesh, all, fc.mesh);
+  }
+  const int ranks = process_count(), rank = process_rank();
+
+  // The global numbering: RCM, then the points grouped by the process PT-Scotch gives them (the
+  // first process partitions the whole point graph).
+  const std::vector<int> rcm = mesh::cuthill_mckee_order(mesh);
+  std::vector<int> part(total_points, 0);
+  if (ranks > 1) {
+    std::vector<int> start{0}, neighbours;
+    if (rank == 0) {  // the point graph in RCM numbering
+      std::vector<int> position(total_points);
+      for (int k = 0; k < total_points; ++k) position[rcm[k]] = k;
+      std::vector<std::vector<int>> rows(total_points);
+      for (const Tet& t4 : mesh::all_tetrahedra(mesh))
+        for (int a : t4)
+          for (int b : t4) rows[position[a]].push_back(position[b]);
+      for (auto& row : rows) {
+        std::sort(row.begin(), row.end());
+        row.erase(std::unique(row.begin(), row.end()), row.end());
+        neighbours.insert(neighbours.end(), row.begin(), row.end());
+        start.push_back(static_cast<int>(neighbours.size()));
+        std::vector<int>().swap(row);
+      }
+    }
+    part = partition_graph(start, neighbours, total_points);
+  }
+  process_begin.assign(ranks + 1, 0);
+  for (int k = 0; k < total_points; ++k) ++process_begin[part[k] + 1];
+  for (int r = 0; r < ranks; ++r) process_begin[r + 1] += process_begin[r];
+  std::vector<int> order(total_points);  // order[global] = mesh point
+  {
+    std::vector<int> next(process_begin.begin(), process_begin.end() - 1);
+    for (int k = 0; k < total_points; ++k) order[next[part[k]]++] = rcm[k];
+  }
+  std::vector<int>().swap(part);
+  node_begin = process_begin[rank];
+  const int node_end = process_begin[rank + 1];
+  owned = node_end - node_begin;
+  for (int r = 0; r < ranks; ++r)  // every process sees it alike
+    if (process_begin[r + 1] == process_begin[r])
+      throw InputError(fmt::format("{}: {} processes for a mesh of {} points: process {} would own none; run it on "
+                                   "fewer processes",
+                                   fc.mesh, ranks, total_points, r));
+
+  // This process's cells and points (in the global numbering, its tetrahedra sorted by it).
+  const TetMesh ordered = mesh::renumbered(mesh, order);
+  if (rank == 0) global_mesh_point = order;
+  const std::vector<Tet> all = mesh::all_tetrahedra(ordered);
+  std::vector<int> local(total_points, -1);
+  local_global.resize(owned);
+  for (int a = 0; a < owned; ++a) {
+    local_global[a] = node_begin + a;
+    local[node_begin + a] = a;
+  }
+  const auto mine = [&](const Tet& t4) {
+    for (int g : t4)
+      if (g >= node_begin && g < node_end) return true;
+    return false;
+  };
+  std::vector<int> ghosts;
+  for (const Tet& t4 : all)
+    if (mine(t4)) {
+      tets.push_back(t4);
+      for (int g : t4)
+        if (local[g] == -1) {
+          local[g] = -2;
+          ghosts.push_back(g);
+        }
+    }
+  std::sort(ghosts.begin(), ghosts.end());
+  for (int g : ghosts) {
+    local[g] = static_cast<int>(local_global.size());
+    local_global.push_back(g);
+  }
+  for (Tet& t4 : tets)
+    for (int& g : t4) g = local[g];
   const double s = fc.length_scale;
-  points.resize(mesh.points.size());
-  for (size_t i = 0; i < points.size(); ++i) points[i] = mesh.points[i] * s;
-  tets = mesh::all_tetrahedra(mesh);
-  if (tets.empty()) throw InputError(fmt::format("{}: the mesh has no tetrahedra", fc.mesh));
+  points.resize(local_global.size());
+  mesh_point.resize(local_global.size());
+  for (size_t a = 0; a < points.size(); ++a) {
+    points[a] = ordered.points[local_global[a]] * s;
+    mesh_point[a] = order[local_global[a]];
+  }
+  build_boundaries(ordered);
 
   gradients.resize(tets.size());
   volumes.resize(tets.size());
@@ -138,54 +268,55 @@ void NavierStokes::Impl::build(const TetMesh& mesh) {
     const Tet& t4 = tets[e];
     double v6 = 0.0;
     gradients[e] = mesh::barycentric_gradients(points[t4[0]], points[t4[1]], points[t4[2]], points[t4[3]], v6);
-    if (!(v6 > 0.0))
-      throw InputError(fmt::format("{}: the tetrahedron of points {}, {}, {}, {} is inverted or flat (six times its "
-                                   "volume {:.3g} m3, at ({:.4g}, {:.4g}, {:.4g}) in mesh units): mend the mesh first",
-                                   fc.mesh, mesh_point[t4[0]], mesh_point[t4[1]], mesh_point[t4[2]],
-                                   mesh_point[t4[3]], v6, mesh.points[t4[0]].x(), mesh.points[t4[0]].y(),
-                                   mesh.points[t4[0]].z()));
     volumes[e] = v6 / 6.0;
     double largest = 0.0;
     for (const Vec3& g : gradients[e]) largest = std::max(largest, g.norm());
     least_height[e] = 1.0 / largest;
   }
 
-  // Node graph: neighbours through tetrahedra, sorted, the node itself included.
-  const int nn = n();
-  std::vector<std::vector<int>> adjacency(nn);
+  // Node graph of the owned points: neighbours through cells (global numbers), sorted, the node
+  // itself included.
+  std::vector<std::vector<int>> adjacency(owned);
   for (const Tet& t4 : tets)
     for (int a : t4)
-      for (int b : t4) adjacency[a].push_back(b);
-  node_start.assign(nn + 1, 0);
-  for (int a = 0; a < nn; ++a) {
+      if (owns(a))
+        for (int b : t4) adjacency[a].push_back(local_global[b]);
+  node_start.assign(owned + 1, 0);
+  for (int a = 0; a < owned; ++a) {
     auto& list = adjacency[a];
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
-    if (list.empty()) list.push_back(a);  // a point no tetrahedron uses keeps its own row
+    if (list.empty()) list.push_back(local_global[a]);  // a point no tetrahedron uses keeps its own row
     node_start[a + 1] = node_start[a] + static_cast<int>(list.size());
   }
-  node_columns.reserve(node_start[nn]);
+  node_columns.reserve(node_start[owned]);
   for (auto& list : adjacency) {
     node_columns.insert(node_columns.end(), list.begin(), list.end());
     std::vector<int>().swap(list);
   }
+  own_start.assign(owned + 1, 0);
+  other_start.assign(owned + 1, 0);
+  place.resize(node_columns.size());
+  for (int a = 0; a < owned; ++a) {
+    int own = 0, other = 0;
+    for (int k = node_start[a]; k < node_start[a + 1]; ++k)
+      place[k] = kBlock * (owned_global(node_columns[k]) ? own++ : other++);
+    own_start[a + 1] = own_start[a] + kBlock * kBlock * own;
+    other_start[a + 1] = other_start[a] + kBlock * kBlock * other;
+  }
   tet_slots.resize(tets.size());
   for (size_t e = 0; e < tets.size(); ++e)
     for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) tet_slots[e][a * 4 + b] = slot(tets[e][a], tets[e][b]);
+      for (int b = 0; b < 4; ++b)
+        tet_slots[e][a * 4 + b] = owns(tets[e][a]) ? slot(tets[e][a], tets[e][b]) : -1;
 
-  // This process's points: consecutive ranges of equal size over the processes.
-  const int ranks = process_count(), rank = process_rank();
-  node_begin = range_begin(nn, rank, ranks);
-  node_end = range_begin(nn, rank + 1, ranks);
-  first_row = kBlock * node_begin;
-  value_base = kBlock * kBlock * node_start[node_begin];
-
-  // The dof pattern's sizes; its columns are made when the solver is (columns_pattern()).
-  pattern.rows = kBlock * (node_end - node_begin);
-  pattern.first_row = first_row;
-  pattern.global_rows = kBlock * nn;
-  nonzeros = kBlock * kBlock * (node_start[node_end] - node_start[node_begin]);
+  // The dof pattern's sizes and ghost rows; its columns are made when the solver is.
+  pattern.rows = kBlock * owned;
+  pattern.first_row = kBlock * node_begin;
+  pattern.global_rows = kBlock * total_points;
+  for (size_t a = owned; a < local_global.size(); ++a)
+    for (int j = 0; j < kBlock; ++j) pattern.ghost_rows.push_back(kBlock * local_global[a] + j);
+  nonzeros = kBlock * kBlock * node_start[owned];
 }
 
 // The dof pattern whole: row (a, i) holds every neighbour's four components. Made for the linear
@@ -194,9 +325,9 @@ SparsePattern NavierStokes::Impl::columns_pattern() const {
   SparsePattern full = pattern;
   full.row_start.assign(pattern.rows + 1, 0);
   full.columns.resize(nonzeros);
-  for (int a = node_begin; a < node_end; ++a)
+  for (int a = 0; a < owned; ++a)
     for (int i = 0; i < kBlock; ++i) {
-      const int row = kBlock * a + i - first_row;
+      const int row = kBlock * a + i;
       int at = value_index(a, i, node_start[a]);
       full.row_start[row] = at;
       for (int k = node_start[a]; k < node_start[a + 1]; ++k)
@@ -206,8 +337,10 @@ SparsePattern NavierStokes::Impl::columns_pattern() const {
   return full;
 }
 
-void NavierStokes::Impl::build_boundaries(const TetMesh& mesh) {
-  const std::map<int, std::string> tag_name = mesh::boundary_tag_names(mesh);
+// `ordered`: the whole mesh in the global numbering (its boundary tells every local point's
+// boundaries, ghosts included).
+void NavierStokes::Impl::build_boundaries(const TetMesh& ordered) {
+  const std::map<int, std::string> tag_name = mesh::boundary_tag_names(ordered);
   std::vector<std::string> names;
   for (const auto& [tag, name] : tag_name) names.push_back(name);
   check_tags(fc, names);
@@ -218,28 +351,56 @@ void NavierStokes::Impl::build_boundaries(const TetMesh& mesh) {
     boundaries.emplace_back();
     boundaries.back().condition = c;
   }
-  for (size_t f = 0; f < mesh.boundary.size(); ++f) {
-    Boundary& b = boundaries[index.at(tag_name.at(mesh.boundary_tags[f]))];
-    const Triangle& tri = mesh.boundary[f];
+  std::vector<int> local(total_points, -1);
+  for (int a = 0; a < n(); ++a) local[local_global[a]] = a;
+  // Per boundary: its triangles with a point this process owns (all their points are local:
+  // the cell on the triangle is this process's), counted in sums by the owner of their first
+  // point (`counted`), and every local point on it.
+  std::vector<std::vector<char>> on(boundaries.size(), std::vector<char>(n(), 0));
+  std::vector<std::vector<char>> counted(boundaries.size());
+  std::vector<double> sums(7 * boundaries.size(), 0.0);  // area, area-weighted centre, area vector
+  for (size_t f = 0; f < ordered.boundary.size(); ++f) {
+    const int k = index.at(tag_name.at(ordered.boundary_tags[f]));
+    const Triangle& global = ordered.boundary[f];
+    for (int g : global)
+      if (local[g] >= 0) on[k][local[g]] = 1;
+    if (!(local[global[0]] >= 0 && local[global[1]] >= 0 && local[global[2]] >= 0)) continue;
+    const Triangle tri{local[global[0]], local[global[1]], local[global[2]]};
+    if (!owns(tri[0]) && !owns(tri[1]) && !owns(tri[2])) continue;
+    Boundary& b = boundaries[k];
     const Vec3 area2 = (points[tri[1]] - points[tri[0]]).cross(points[tri[2]] - points[tri[0]]);
     const double area = 0.5 * area2.norm();
     b.faces.push_back({tri, area > 0.0 ? Vec3(area2.normalized()) : Vec3::Zero(), area});
-    b.area += area;
-    b.center += area * (points[tri[0]] + points[tri[1]] + points[tri[2]]) / 3.0;
-    b.normal += 0.5 * area2;
+    counted[k].push_back(owns(tri[0]) ? 1 : 0);
+    if (!owns(tri[0])) continue;
+    const Vec3 centre = area * (points[tri[0]] + points[tri[1]] + points[tri[2]]) / 3.0;
+    double* sum = &sums[7 * k];
+    sum[0] += area;
+    for (int i = 0; i < 3; ++i) {
+      sum[1 + i] += centre[i];
+      sum[4 + i] += 0.5 * area2[i];
+    }
+  }
+  std::vector<int>().swap(local);
+  sums = sum_all(std::move(sums));
+  for (size_t k = 0; k < boundaries.size(); ++k) {
+    Boundary& b = boundaries[k];
+    b.counted = std::move(counted[k]);
+    b.area = sums[7 * k];
+    b.center = Vec3(sums[7 * k + 1], sums[7 * k + 2], sums[7 * k + 3]);
+    b.normal = Vec3(sums[7 * k + 4], sums[7 * k + 5], sums[7 * k + 6]);
+    for (int a = 0; a < n(); ++a)
+      if (on[k][a]) b.nodes.push_back(a);
   }
 
   std::vector<char> on_wall(n(), 0);
-  for (const Boundary& b : boundaries)
-    if (b.condition.type == BoundaryType::wall)
-      for (const BoundaryFace& f : b.faces)
-        for (int v : f.v) on_wall[v] = 1;
+  for (size_t k = 0; k < boundaries.size(); ++k)
+    if (boundaries[k].condition.type == BoundaryType::wall)
+      for (int a = 0; a < n(); ++a) on_wall[a] |= on[k][a];
+  std::vector<std::vector<char>>().swap(on);
 
-  fixed.assign(pattern.total_rows(), 0);
+  fixed.assign(kBlock * n(), 0);
   for (Boundary& b : boundaries) {
-    std::set<int> nodes;
-    for (const BoundaryFace& f : b.faces) nodes.insert(f.v.begin(), f.v.end());
-    b.nodes.assign(nodes.begin(), nodes.end());
     if (b.area > 0.0) b.center /= b.area;
     if (b.normal.norm() > 0.0) b.normal.normalize();
     if (b.condition.type == BoundaryType::wall || b.condition.type == BoundaryType::velocity)
@@ -248,20 +409,27 @@ void NavierStokes::Impl::build_boundaries(const TetMesh& mesh) {
     if (b.condition.type != BoundaryType::velocity) continue;
 
     // The profile: per point its distance from the end's centre over the radius of a disc of
-    // the end's area (wall points: none), each shape scaled to a unit discrete flux.
+    // the end's area (wall points: none), each shape scaled to a unit discrete flux (summed over
+    // the processes).
     const double radius = std::sqrt(b.area / M_PI);
-    std::map<int, int> local;  // point -> index in b.nodes
+    std::map<int, int> at;  // local point -> index in b.nodes
     std::vector<double> rho(b.nodes.size(), -1.0);
     for (size_t k = 0; k < b.nodes.size(); ++k) {
       const int v = b.nodes[k];
-      local[v] = static_cast<int>(k);
+      at[v] = static_cast<int>(k);
       const Vec3 d = points[v] - b.center;
       if (!on_wall[v]) rho[k] = (d - d.dot(b.normal) * b.normal).norm() / radius;
     }
     const auto unit_flux = [&](auto shape) {  // shape: per node of b.nodes, real or complex
-      auto flux = shape[0] * 0.0;
-      for (const BoundaryFace& f : b.faces)
-        flux += f.area / 3.0 * (shape[local[f.v[0]]] + shape[local[f.v[1]]] + shape[local[f.v[2]]]);
+      typename decltype(shape)::value_type flux{};
+      for (size_t f = 0; f < b.faces.size(); ++f)
+        if (b.counted[f]) {
+          const Triangle& v = b.faces[f].v;
+          flux += b.faces[f].area / 3.0 * (shape[at[v[0]]] + shape[at[v[1]]] + shape[at[v[2]]]);
+        }
+      const std::vector<double> total = sum_all({std::real(flux), std::imag(flux)});
+      if constexpr (std::is_same_v<decltype(flux), double>) flux = total[0];
+      else flux = Complex(total[0], total[1]);
       if (!(std::abs(flux) > 0.0))
         throw InputError(fmt::format("{}: velocity boundary \"{}\" has no point off the wall: its profile would carry "
                                      "no flow (is the tag on the end's cap?)",
@@ -294,14 +462,15 @@ void NavierStokes::Impl::build_boundaries(const TetMesh& mesh) {
   bool natural = false;
   for (const Boundary& b : boundaries)
     natural |= b.condition.type == BoundaryType::traction || b.condition.type == BoundaryType::resistance;
-  if (!natural) {
-    fixed[3] = 1;  // point 0's pressure
+  if (!natural) {  // the pressure of global point 0, wherever it is local
+    for (int a = 0; a < n(); ++a)
+      if (local_global[a] == 0) fixed[kBlock * a + 3] = 1;
   }
   resistance_pressure.assign(boundaries.size(), 0.0);
 }
 
 void NavierStokes::Impl::set_dirichlet(double time) {
-  dirichlet.assign(pattern.total_rows(), 0.0);
+  dirichlet.assign(kBlock * n(), 0.0);
   for (const Boundary& b : boundaries) {
     if (b.condition.type != BoundaryType::velocity) continue;
     const double q = b.condition.flow(time) * 1e-6;  // mL/s -> m3/s, positive into the domain
@@ -321,29 +490,39 @@ void NavierStokes::Impl::set_dirichlet(double time) {
   }
 }
 
-double NavierStokes::Impl::flux(const Boundary& b, const std::vector<Vec3>& velocity) const {
-  double q = 0.0;
-  for (const BoundaryFace& f : b.faces)
-    q += f.area / 3.0 * (velocity[f.v[0]] + velocity[f.v[1]] + velocity[f.v[2]]).dot(f.normal);
-  return q;
+std::vector<double> NavierStokes::Impl::fluxes(const std::vector<Vec3>& velocity) const {
+  std::vector<double> q(boundaries.size(), 0.0);
+  for (size_t k = 0; k < boundaries.size(); ++k) {
+    const Boundary& b = boundaries[k];
+    for (size_t f = 0; f < b.faces.size(); ++f)
+      if (b.counted[f]) {
+        const BoundaryFace& face = b.faces[f];
+        q[k] += face.area / 3.0 * (velocity[face.v[0]] + velocity[face.v[1]] + velocity[face.v[2]]).dot(face.normal);
+      }
+  }
+  return sum_all(std::move(q));
 }
 
 void NavierStokes::Impl::update_resistance() {
+  const std::vector<double> q = fluxes(u);
   for (size_t k = 0; k < boundaries.size(); ++k)
     if (boundaries[k].condition.type == BoundaryType::resistance)
-      resistance_pressure[k] = boundaries[k].condition.resistance * flux(boundaries[k], u) / fc.density;
+      resistance_pressure[k] = boundaries[k].condition.resistance * q[k] / fc.density;
 }
 
 double NavierStokes::Impl::take_solution(std::vector<Vec3>& velocity, std::vector<double>& pressure) const {
   double change = 0.0, size = 0.0;
   for (int a = 0; a < n(); ++a) {
     const Vec3 v(x[kBlock * a], x[kBlock * a + 1], x[kBlock * a + 2]);
-    change += (v - velocity[a]).squaredNorm();
-    size += v.squaredNorm();
+    if (owns(a)) {
+      change += (v - velocity[a]).squaredNorm();
+      size += v.squaredNorm();
+    }
     velocity[a] = v;
     pressure[a] = x[kBlock * a + 3];
   }
-  return size > 0.0 ? std::sqrt(change / size) : 0.0;
+  const std::vector<double> sums = sum_all({change, size});
+  return sums[1] > 0.0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
 }
 
 double NavierStokes::Impl::cfl(const std::vector<Vec3>& advect, double dt) const {
@@ -353,14 +532,39 @@ double NavierStokes::Impl::cfl(const std::vector<Vec3>& advect, double dt) const
     const Vec3 mean = 0.25 * (advect[t4[0]] + advect[t4[1]] + advect[t4[2]] + advect[t4[3]]);
     worst = std::max(worst, mean.norm() * dt / least_height[e]);
   }
-  return worst;
+  const std::vector<double> all = gather_all(worst);
+  return *std::max_element(all.begin(), all.end());
+}
+
+std::vector<double> NavierStokes::Impl::gather_points(const std::vector<double>& mine, int width) const {
+  const std::vector<double> all = gather_to_first(mine);
+  if (global_mesh_point.empty()) return {};
+  std::vector<double> out(all.size());
+  for (int g = 0; g < total_points; ++g)
+    for (int i = 0; i < width; ++i) out[width * global_mesh_point[g] + i] = all[width * g + i];
+  return out;
+}
+
+void NavierStokes::Impl::publish() {
+  std::vector<double> mine(kBlock * owned);
+  for (int a = 0; a < owned; ++a) {
+    for (int i = 0; i < 3; ++i) mine[kBlock * a + i] = u[a][i];
+    mine[kBlock * a + 3] = p[a] * fc.density;
+  }
+  const std::vector<double> all = gather_points(mine, kBlock);
+  u_mesh.resize(all.size() / kBlock);
+  p_mesh.resize(all.size() / kBlock);
+  for (size_t k = 0; k < u_mesh.size(); ++k) {
+    u_mesh[k] = Vec3(all[kBlock * k], all[kBlock * k + 1], all[kBlock * k + 2]);
+    p_mesh[k] = all[kBlock * k + 3];
+  }
 }
 
 // mass_coefficient: alpha_0 / dt (0 for a steady solve); history: the BDF history over dt.
 void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::vector<Vec3>& history,
                                   double mass_coefficient, double dt) {
   make_solver();
-  double* const values = solver->begin_assembly();  // the matrix's own values, zeroed
+  values = solver->begin_assembly();  // the matrix's own values, zeroed
   rhs.assign(pattern.rows, 0.0);
   std::vector<double> diagonal(pattern.rows, 0.0);
   const double m = mass_coefficient;
@@ -370,7 +574,6 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
   double F[16];
   for (size_t e = 0; e < tets.size(); ++e) {
     const Tet& t4 = tets[e];
-    if (!owns(t4[0]) && !owns(t4[1]) && !owns(t4[2]) && !owns(t4[3])) continue;
     const auto& g = gradients[e];
     const double V = volumes[e];
     Vec3 ubar = Vec3::Zero(), hbar = Vec3::Zero();
@@ -414,17 +617,17 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
       for (int i = 0; i < kBlock; ++i) {
         const int row = kBlock * na + i;
         if (fixed[row]) {
-          diagonal[row - first_row] += K[4 * a + i][4 * a + i];
+          diagonal[row] += K[4 * a + i][4 * a + i];
           continue;
         }
-        rhs[row - first_row] += F[4 * a + i];
+        rhs[row] += F[4 * a + i];
         for (int b = 0; b < 4; ++b) {
-          const int base = value_index(na, i, tet_slots[e][a * 4 + b]);
+          double* const place_b = entry(na, i, tet_slots[e][a * 4 + b]);
           const int nb = t4[b];
           for (int j = 0; j < kBlock; ++j) {
             const int column = kBlock * nb + j;
-            if (fixed[column]) rhs[row - first_row] -= K[4 * a + i][4 * b + j] * dirichlet[column];
-            else values[base + j] += K[4 * a + i][4 * b + j];
+            if (fixed[column]) rhs[row] -= K[4 * a + i][4 * b + j] * dirichlet[column];
+            else place_b[j] += K[4 * a + i][4 * b + j];
           }
         }
       }
@@ -445,12 +648,12 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
         for (int i = 0; i < 3; ++i) {
           const int row = kBlock * na + i;
           if (fixed[row]) continue;
-          rhs[row - first_row] -= resistance_pressure[k] * f.normal[i] * f.area / 3.0;
+          rhs[row] -= resistance_pressure[k] * f.normal[i] * f.area / 3.0;
           if (beta == 0.0) continue;
           for (int bb = 0; bb < 3; ++bb) {
             const int nb = f.v[bb];
             if (fixed[kBlock * nb + i]) continue;
-            values[value_index(na, i, slot(na, nb)) + i] += beta * f.area / 12.0 * (a == bb ? 2.0 : 1.0);
+            entry(na, i, slot(na, nb))[i] += beta * f.area / 12.0 * (a == bb ? 2.0 : 1.0);
           }
         }
       }
@@ -458,16 +661,17 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
   }
 
   // Dirichlet rows: the diagonal the elements gave them, times the known value.
-  for (int a = node_begin; a < node_end; ++a)
+  for (int a = 0; a < owned; ++a)
     for (int i = 0; i < kBlock; ++i) {
       const int row = kBlock * a + i;
       if (!fixed[row]) continue;
-      double d = std::abs(diagonal[row - first_row]);
+      double d = std::abs(diagonal[row]);
       if (!(d > 0.0)) d = 1.0;
-      values[value_index(a, i, slot(a, a)) + i] = d;
-      rhs[row - first_row] = d * dirichlet[row];
+      entry(a, i, slot(a, a))[i] = d;
+      rhs[row] = d * dirichlet[row];
     }
   solver->end_assembly();
+  values = MatrixValues{};
 }
 
 void NavierStokes::Impl::make_solver() {
@@ -478,7 +682,7 @@ void NavierStokes::Impl::make_solver() {
 }
 
 void NavierStokes::Impl::solve_system(StepReport& report, const std::string& where) {
-  x.assign(pattern.total_rows(), 0.0);
+  x.assign(kBlock * n(), 0.0);
   for (int a = 0; a < n(); ++a) {
     for (int i = 0; i < 3; ++i) x[kBlock * a + i] = u[a][i];
     x[kBlock * a + 3] = p[a];
@@ -496,15 +700,9 @@ void NavierStokes::Impl::solve_system(StepReport& report, const std::string& whe
 }
 
 void NavierStokes::Impl::check_finite(const StepReport& report) const {
-  double largest = 0.0;
-  for (const Vec3& v : u) {
-    if (!v.allFinite()) {
-      largest = INFINITY;
-      break;
-    }
-    largest = std::max(largest, v.norm());
-  }
-  if (std::isfinite(largest)) return;
+  bool finite = true;
+  for (const Vec3& v : u) finite = finite && v.allFinite();
+  if (!any_process(!finite)) return;
   throw ComputationError(fmt::format("step {} (t = {:.6g} s) diverged: the velocity is no longer finite; the CFL "
                                      "number was {:.3g} (above ~1 the semi-implicit scheme may blow up: take a "
                                      "smaller dt), or flow entering through a traction boundary (backflow) grew",
@@ -517,12 +715,7 @@ NavierStokes::NavierStokes(const TetMesh& mesh, const FlowCase& flow_case, const
   s.fc = flow_case;
   s.reporter = &reporter;
   s.nu = flow_case.viscosity / flow_case.density;
-  {
-    s.mesh_point = mesh::cuthill_mckee_order(mesh);
-    const TetMesh ordered = mesh::renumbered(mesh, s.mesh_point);
-    s.build(ordered);
-    s.build_boundaries(ordered);
-  }
+  s.build(mesh);
   s.u.assign(s.n(), Vec3::Zero());
   s.u_old = s.u;
   s.p.assign(s.n(), 0.0);
@@ -669,8 +862,8 @@ StepReport NavierStokes::start_from_stokes() {
 
 void NavierStokes::set_state(const std::vector<Vec3>& velocity, double time) {
   Impl& s = *impl_;
-  if (velocity.size() != s.u.size())
-    throw InputError(fmt::format("initial velocity: {} values for {} points", velocity.size(), s.u.size()));
+  if (static_cast<int>(velocity.size()) != s.total_points)
+    throw InputError(fmt::format("initial velocity: {} values for {} points", velocity.size(), s.total_points));
   for (int k = 0; k < s.n(); ++k) s.u[k] = velocity[s.mesh_point[k]];
   s.u_old = s.u;
   s.publish();
@@ -683,23 +876,33 @@ FlowState NavierStokes::state() const {
   FlowState out;
   out.time = s.t;
   out.steps = s.step_count;
-  out.velocity.resize(s.n());
-  out.previous.resize(s.n());
-  out.kinematic_pressure.resize(s.n());
-  for (int k = 0; k < s.n(); ++k) {
-    out.velocity[s.mesh_point[k]] = s.u[k];
-    out.previous[s.mesh_point[k]] = s.u_old[k];
-    out.kinematic_pressure[s.mesh_point[k]] = s.p[k];
+  std::vector<double> mine(7 * s.owned);
+  for (int k = 0; k < s.owned; ++k) {
+    for (int i = 0; i < 3; ++i) {
+      mine[7 * k + i] = s.u[k][i];
+      mine[7 * k + 3 + i] = s.u_old[k][i];
+    }
+    mine[7 * k + 6] = s.p[k];
+  }
+  const std::vector<double> all = s.gather_points(mine, 7);
+  const size_t n = all.size() / 7;
+  out.velocity.resize(n);
+  out.previous.resize(n);
+  out.kinematic_pressure.resize(n);
+  for (size_t k = 0; k < n; ++k) {
+    out.velocity[k] = Vec3(all[7 * k], all[7 * k + 1], all[7 * k + 2]);
+    out.previous[k] = Vec3(all[7 * k + 3], all[7 * k + 4], all[7 * k + 5]);
+    out.kinematic_pressure[k] = all[7 * k + 6];
   }
   return out;
 }
 
 void NavierStokes::restore(const FlowState& state) {
   Impl& s = *impl_;
-  const size_t n = s.u.size();
+  const size_t n = s.total_points;
   if (state.velocity.size() != n || state.previous.size() != n || state.kinematic_pressure.size() != n)
     throw InputError(fmt::format("the saved state has {} points, the mesh {}", state.velocity.size(), n));
-  for (size_t k = 0; k < n; ++k) {
+  for (int k = 0; k < s.n(); ++k) {
     s.u[k] = state.velocity[s.mesh_point[k]];
     s.u_old[k] = state.previous[s.mesh_point[k]];
     s.p[k] = state.kinematic_pressure[s.mesh_point[k]];
@@ -713,25 +916,29 @@ double NavierStokes::time() const { return impl_->t; }
 int NavierStokes::steps() const { return impl_->step_count; }
 int NavierStokes::dofs() const { return impl_->pattern.total_rows(); }
 const std::vector<Vec3>& NavierStokes::velocity() const { return impl_->u_mesh; }
-
-std::vector<double> NavierStokes::pressure() const {
-  std::vector<double> out(impl_->p.size());
-  for (size_t k = 0; k < out.size(); ++k) out[impl_->mesh_point[k]] = impl_->p[k] * impl_->fc.density;
-  return out;
-}
+const std::vector<double>& NavierStokes::pressure() const { return impl_->p_mesh; }
 
 std::vector<BoundaryFlow> NavierStokes::boundary_flows() const {
   const Impl& s = *impl_;
+  std::vector<double> weighted(s.boundaries.size(), 0.0);
+  for (size_t k = 0; k < s.boundaries.size(); ++k) {
+    const Boundary& b = s.boundaries[k];
+    for (size_t f = 0; f < b.faces.size(); ++f)
+      if (b.counted[f]) {
+        const BoundaryFace& face = b.faces[f];
+        weighted[k] += face.area / 3.0 * (s.p[face.v[0]] + s.p[face.v[1]] + s.p[face.v[2]]);
+      }
+  }
+  weighted = sum_all(std::move(weighted));
+  const std::vector<double> q = s.fluxes(s.u);
   std::vector<BoundaryFlow> out;
-  for (const Boundary& b : s.boundaries) {
+  for (size_t k = 0; k < s.boundaries.size(); ++k) {
+    const Boundary& b = s.boundaries[k];
     BoundaryFlow f;
     f.tag = b.condition.tag;
-    f.flux = s.flux(b, s.u);
+    f.flux = q[k];
     f.area = b.area;
-    double weighted = 0.0;
-    for (const BoundaryFace& face : b.faces)
-      weighted += face.area / 3.0 * (s.p[face.v[0]] + s.p[face.v[1]] + s.p[face.v[2]]);
-    f.mean_pressure = b.area > 0.0 ? weighted / b.area * s.fc.density : 0.0;
+    f.mean_pressure = b.area > 0.0 ? weighted[k] / b.area * s.fc.density : 0.0;
     out.push_back(f);
   }
   return out;
@@ -739,33 +946,23 @@ std::vector<BoundaryFlow> NavierStokes::boundary_flows() const {
 
 PartitionReport NavierStokes::partition() const {
   const Impl& s = *impl_;
-  const int ranks = process_count(), nn = s.n();
-  std::vector<int> begin(ranks + 1);
-  for (int r = 0; r <= ranks; ++r) begin[r] = range_begin(nn, r, ranks);
-  const auto owner = [&](int a) {
-    return static_cast<int>(std::upper_bound(begin.begin(), begin.end(), a) - begin.begin()) - 1;
-  };
-  // (point, process) where the process assembles a cell with the point and does not own it.
-  std::vector<std::pair<int, int>> ghosts;
-  for (const Tet& t4 : s.tets) {
-    int owners[4];
-    for (int a = 0; a < 4; ++a) owners[a] = owner(t4[a]);
-    for (int r : owners)
-      for (int a = 0; a < 4; ++a)
-        if (owners[a] != r) ghosts.emplace_back(t4[a], r);
-  }
-  std::sort(ghosts.begin(), ghosts.end());
-  ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
+  const int ranks = process_count();
+  std::vector<int> owners;  // the processes owning this process's ghosts
+  for (int a = s.owned; a < s.n(); ++a)
+    owners.push_back(static_cast<int>(std::upper_bound(s.process_begin.begin(), s.process_begin.end(),
+                                                       s.local_global[a]) -
+                                      s.process_begin.begin()) -
+                     1);
+  std::sort(owners.begin(), owners.end());
+  owners.erase(std::unique(owners.begin(), owners.end()), owners.end());
+  const std::vector<double> ghosts = gather_all(s.n() - s.owned);
+  const std::vector<double> neighbours = gather_all(static_cast<double>(owners.size()));
   PartitionReport out;
-  out.owned_points.resize(ranks);
-  out.ghost_points.assign(ranks, 0);
-  for (int r = 0; r < ranks; ++r) out.owned_points[r] = begin[r + 1] - begin[r];
-  std::vector<std::set<int>> next(ranks);
-  for (const auto& [a, r] : ghosts) {
-    ++out.ghost_points[r];
-    next[r].insert(owner(a));
+  for (int r = 0; r < ranks; ++r) {
+    out.owned_points.push_back(s.process_begin[r + 1] - s.process_begin[r]);
+    out.ghost_points.push_back(static_cast<int>(ghosts[r]));
+    out.neighbours.push_back(static_cast<int>(neighbours[r]));
   }
-  for (int r = 0; r < ranks; ++r) out.neighbours.push_back(static_cast<int>(next[r].size()));
   return out;
 }
 

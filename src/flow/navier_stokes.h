@@ -18,9 +18,14 @@
 // (beta/2 |min(u.n, 0)| u, Moghadam et al. 2011); `resistance` a traction -R Q n with the
 // outflow Q of the last step. Dirichlet rows carry the diagonal the element matrices gave them.
 // Without a traction or resistance boundary the pressure is fixed to 0 at one point.
-// Inside, the points are renumbered (mesh::cuthill_mckee_order: a narrow band, so that the
-// assembly and the solver touch nearby memory, and each MPI process's consecutive range of rows
-// is a compact piece of the lumen); every argument and result is in the mesh's numbering.
+// Inside, the points are renumbered: under MPI split among the processes by PT-Scotch (balanced
+// in points, few shared), each process's in reverse Cuthill-McKee order (mesh::cuthill_mckee_order:
+// a narrow band, so that the assembly and the solver touch nearby memory); a process keeps only
+// its cells (those with a point it owns) and their points, and after a solve receives only its
+// ghost points' values. Every argument and result is in the mesh's numbering.
+// Under MPI every process makes one and calls every member alike (they are collective), but the
+// whole flow (velocity(), pressure(), state()'s fields) is on the first process only: empty on
+// the others.
 #pragma once
 
 #include "flow/case.h"
@@ -51,9 +56,9 @@ struct FlowState {
   std::vector<double> kinematic_pressure;
 };
 
-// How the points are shared among the MPI processes (consecutive ranges of the solver's
-// numbering): per process its points (owned rows / 4), its ghost points (points of the cells it
-// assembles that another process owns) and the processes it shares cells with.
+// How the points are shared among the MPI processes: per process its points (owned rows / 4),
+// its ghost points (points of the cells it assembles that another process owns) and the
+// processes it shares cells with.
 struct PartitionReport {
   std::vector<int> owned_points, ghost_points, neighbours;
 };
@@ -94,15 +99,16 @@ class NavierStokes {
 
   // Starts the time stepping from this velocity (m/s per point) at this time (s).
   void set_state(const std::vector<Vec3>& velocity, double time);
-  // The whole state, and the stepping resumed from one (InputError when its sizes do not fit).
+  // The whole state (its fields on the first process), and the stepping resumed from one (every
+  // process given the whole; InputError when its sizes do not fit).
   FlowState state() const;
   void restore(const FlowState& state);
 
   double time() const;
   int steps() const;
   int dofs() const;
-  const std::vector<Vec3>& velocity() const;  // m/s per mesh point
-  std::vector<double> pressure() const;       // Pa per mesh point
+  const std::vector<Vec3>& velocity() const;   // m/s per mesh point (first process)
+  const std::vector<double>& pressure() const;  // Pa per mesh point (first process)
   std::vector<BoundaryFlow> boundary_flows() const;
   std::string solver_description() const;
   PartitionReport partition() const;

@@ -9,6 +9,9 @@ extern "C" __attribute__((visibility("default"))) const vesselmesh::flow::PetscC
       &process_rank,
       &any_process,
       &gather_all,
+      &sum_all,
+      &gather_to_first,
+      &partition_graph,
       [](SparsePattern pattern, int block_size, const std::string& defaults, const std::string& options) {
         return new LinearSolver(std::move(pattern), block_size, defaults, options);
       },

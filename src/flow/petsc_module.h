@@ -13,20 +13,24 @@ inline constexpr const char* kPetscModuleFile = "libvesselmesh-petsc.so";
 
 // The module's entry points: a LinearSolver made, used and destroyed inside the module; `layout`
 // first, as in io/gmsh_module.h (raise it when this table or a type it passes changes).
-inline constexpr int kPetscCallsLayout = 4;
+inline constexpr int kPetscCallsLayout = 6;
 struct PetscCalls {
   int layout;
   int (*process_count)();
   int (*process_rank)();
   bool (*any_process)(bool flag);
   std::vector<double> (*gather_all)(double value);
+  std::vector<double> (*sum_all)(std::vector<double> values);
+  std::vector<double> (*gather_to_first)(const std::vector<double>& values);
+  std::vector<int> (*partition_graph)(const std::vector<int>& start, const std::vector<int>& neighbours,
+                                      int total);
   LinearSolver* (*create)(SparsePattern pattern, int block_size, const std::string& defaults,
                           const std::string& options);
   void (*destroy)(LinearSolver* solver);
   const SparsePattern& (*pattern)(const LinearSolver& solver);
   SolveStats (*solve)(LinearSolver& solver, const std::vector<double>& values, const std::vector<double>& rhs,
                       std::vector<double>& x);
-  double* (*begin_assembly)(LinearSolver& solver);
+  MatrixValues (*begin_assembly)(LinearSolver& solver);
   void (*end_assembly)(LinearSolver& solver);
   SolveStats (*solve_assembled)(LinearSolver& solver, const std::vector<double>& rhs, std::vector<double>& x);
   void (*reuse_preconditioner)(LinearSolver& solver, bool on);

@@ -19,6 +19,7 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <optional>
 
 namespace vesselmesh::flow {
 namespace {
@@ -74,7 +75,8 @@ std::string pvd(const std::vector<std::pair<double, std::string>>& files, const 
 SimulationSummary simulate(const FlowCase& input_case, const std::string& output_dir,
                            const std::string& extra_petsc_options, const Reporter& all_reporter, bool restart) {
   const auto start = Clock::now();
-  // Under mpirun every process reads the mesh and assembles its own rows; the first writes.
+  // Under mpirun every process reads the mesh, keeps its part of it and assembles its own rows; the
+  // first gathers the flow, computes the wall shear stress and writes.
   const int ranks = process_count();
   const bool writer = process_rank() == 0;
   const Reporter& reporter = writer ? all_reporter : silent_reporter();
@@ -95,12 +97,18 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   const post::WallSurface wall = post::extract_wall(mesh, all, wall_tags);
   std::vector<Vec3> si(mesh.points.size());
   for (size_t i = 0; i < si.size(); ++i) si[i] = mesh.points[i] * fc.length_scale;
-  const post::WallShearOperator wall_shear(wall, all, si, post::parse_wss_method(fc.wss_method));
-  reporter.info(fmt::format("wall shear stress: {} method on {} wall points{}", fc.wss_method, wall.mesh.num_points(),
-                            wall_shear.face_fallbacks() > 0
-                                ? fmt::format(" ({} by their faces: too few neighbours for a quadratic)",
-                                              wall_shear.face_fallbacks())
-                                : ""));
+  // The wall shear stress is computed where the whole flow is gathered: on the first process.
+  std::optional<post::WallShearOperator> wall_shear;
+  if (writer) {
+    wall_shear.emplace(wall, all, si, post::parse_wss_method(fc.wss_method));
+    reporter.info(fmt::format("wall shear stress: {} method on {} wall points{}", fc.wss_method,
+                              wall.mesh.num_points(),
+                              wall_shear->face_fallbacks() > 0
+                                  ? fmt::format(" ({} by their faces: too few neighbours for a quadratic)",
+                                                wall_shear->face_fallbacks())
+                                  : ""));
+  }
+  std::vector<Vec3>().swap(si);
 
   if (writer) std::filesystem::create_directories(output_dir);
   const PartitionReport partition = ns.partition();
@@ -108,8 +116,10 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     const auto [least, most] = std::minmax_element(partition.owned_points.begin(), partition.owned_points.end());
     const auto [least_ghosts, most_ghosts] =
         std::minmax_element(partition.ghost_points.begin(), partition.ghost_points.end());
-    reporter.info(fmt::format("{} MPI processes: {} to {} unknowns each, {} to {} ghost points, up to {} neighbours",
-                              ranks, 4 * *least, 4 * *most, *least_ghosts, *most_ghosts,
+    const double mean = static_cast<double>(mesh.num_points()) / ranks;
+    reporter.info(fmt::format("{} MPI processes (points split by PT-Scotch): {} to {} unknowns each (largest / mean "
+                              "{:.3f}), {} to {} ghost points, up to {} neighbours",
+                              ranks, 4 * *least, 4 * *most, *most / mean, *least_ghosts, *most_ghosts,
                               *std::max_element(partition.neighbours.begin(), partition.neighbours.end())));
   }
   const std::string units = fmt::format("points in {} (x {:g} m), velocity m/s, pressure Pa, wss Pa, time s",
@@ -196,11 +206,11 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
       summary.saved += 1;
       return;
     }
-    std::vector<double> pressure = ns.pressure();
+    const std::vector<double>& pressure = ns.pressure();
     io::write_vtu(output_dir + "/fluid_" + name + ".vtu", mesh,
                   {Field::vector("velocity", ns.velocity()), Field::scalar("pressure", pressure)});
     const std::vector<Vec3> tau =
-        computed ? *computed : wall_shear.apply(ns.velocity(), fc.viscosity);
+        computed ? *computed : wall_shear->apply(ns.velocity(), fc.viscosity);
     std::vector<double> magnitude(tau.size());
     for (size_t i = 0; i < tau.size(); ++i) magnitude[i] = tau[i].norm();
     io::write_vtp(output_dir + "/wall_" + name + ".vtp", wall.mesh,
@@ -224,10 +234,11 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   const std::string checkpoint_path = output_dir + "/checkpoint.bin";
   const uint64_t fingerprint = run_fingerprint(mesh, fc.dt);
   const auto write_checkpoint_now = [&]() {
+    FlowState flow = ns.state();  // every process takes part; the first has it whole
     if (!writer) return;
     Checkpoint c;
     c.fingerprint = fingerprint;
-    c.flow = ns.state();
+    c.flow = std::move(flow);
     c.saved = summary.saved;
     c.linear_iterations = summary.linear_iterations;
     c.log = log;
@@ -304,7 +315,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
         std::vector<Vec3> tau;
         const bool in_window = writer && r.time >= window_start - 0.5 * fc.dt;
         if (in_window) {
-          tau = wall_shear.apply(ns.velocity(), fc.viscosity);
+          tau = wall_shear->apply(ns.velocity(), fc.viscosity);
           indices.add(r.time, tau);
         }
         if (r.step % fc.save_every == 0 || k + 1 == steps) save(r.time, in_window ? &tau : nullptr);
