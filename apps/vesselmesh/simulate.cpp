@@ -22,13 +22,17 @@ Command add_simulate_command(CLI::App& parent) {
       "SIGTERM or SIGINT stops it (after the step under way; exit code 128 + the signal); --restart goes on from "
       "it. Under 'mpirun -np K' the rows are shared among the K processes");
   struct Options {
-    std::string case_file, output, petsc_options;
+    std::string case_file, output, petsc_options, mesh;
     bool restart = false;
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
   app->add_option("CASE", o->case_file, "Case file (.toml)")->required()->check(CLI::ExistingFile);
   app->add_option("-o,--output", o->output, "Output folder (created if absent)")->required();
+  app->add_option("--mesh", o->mesh,
+                  "Volume mesh (.msh or .vtu) to run the case on instead of the case's `mesh` (a path as given "
+                  "here, not relative to the case file)")
+      ->check(CLI::ExistingFile);
   app->add_option("--petsc-options", o->petsc_options,
                   "PETSc options applied after the case's [solver] petsc_options, e.g. \"-ksp_monitor\"");
   app->add_flag("--restart", o->restart,
@@ -38,7 +42,8 @@ Command add_simulate_command(CLI::App& parent) {
   return {app, [o] {
             const bool first = flow::process_rank() == 0;  // under mpirun, the first process speaks
             TerminalReporter reporter(o->common.quiet || !first);
-            const flow::FlowCase fc = flow::read_case(o->case_file);
+            flow::FlowCase fc = flow::read_case(o->case_file);
+            if (!o->mesh.empty()) fc.mesh = o->mesh;
             const flow::SimulationSummary s = flow::simulate(fc, o->output, o->petsc_options, reporter, o->restart);
             if (s.status == "stopped") return 128 + s.signal;
             if (!first) return 0;

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+
 namespace vesselmesh::cli {
 
 Command add_study_command(CLI::App& parent) {
@@ -19,15 +21,22 @@ Command add_study_command(CLI::App& parent) {
       "PNG), DIR/study.json. Steps already made with the same inputs are reused: run it again to resume");
   struct Options {
     std::string study_file, output;
+    int ranks = 0;
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
   app->add_option("STUDY", o->study_file, "Study file (.toml)")->required()->check(CLI::ExistingFile);
   app->add_option("-o,--output", o->output, "Output folder (created if absent)")->required();
+  app->add_option("--ranks", o->ranks,
+                  "Processes each flow runs on (the study file's `ranks`, default 1): more than 1 runs each flow as "
+                  "'mpirun -np N vesselmesh simulate ...' (mpirun from PATH)")
+      ->check(CLI::PositiveNumber);
   add_common_options(*app, o->common);
   return {app, [o] {
             TerminalReporter reporter(o->common.quiet);
-            const study::StudyConfig config = study::read_study(o->study_file);
+            study::StudyConfig config = study::read_study(o->study_file);
+            if (o->ranks > 0) config.ranks = o->ranks;
+            config.program = std::filesystem::read_symlink("/proc/self/exe").string();
             const study::StudyResult r = study::run_study(config, o->output, reporter);
             reporter.info(fmt::format("study done: {} meshes, reference {}; report in {} and {}", r.meshes.size(),
                                       r.meshes[r.reference].name, r.report_html, r.report_markdown));

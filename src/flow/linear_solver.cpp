@@ -197,7 +197,14 @@ LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::str
 
   // The options database holds this solver's options only: defaults, then the caller's.
   check(PetscOptionsClear(nullptr), "clearing options");
-  check(PetscOptionsInsertString(nullptr, defaults.c_str()), "default options");
+  // The defaults' preconditioning side goes with their Krylov method: a caller's -ksp_type without
+  // -ksp_pc_side takes its method's own (CG refuses the right side).
+  std::string base = defaults;
+  const std::string side = "-ksp_pc_side right";
+  if (options.find("-ksp_type") != std::string::npos && options.find("-ksp_pc_side") == std::string::npos &&
+      base.find(side) != std::string::npos)
+    base.erase(base.find(side), side.size());
+  check(PetscOptionsInsertString(nullptr, base.c_str()), "default options");
   if (PetscOptionsInsertString(nullptr, options.c_str()) != 0) {
     petsc_message.clear();
     throw OptionError(fmt::format("PETSc cannot read the solver options \"{}\"", options));

@@ -8,6 +8,7 @@
 #include "flow/simulate.h"
 #include "io/atomic_file.h"
 #include "io/msh.h"
+#include "io/process.h"
 #include "io/surface.h"
 #include "io/toml_reader.h"
 #include "io/units.h"
@@ -42,6 +43,39 @@ using Json = nlohmann::ordered_json;
 
 double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
+// The flow of one mesh on config.ranks processes: `mpirun -np N PROGRAM simulate CASE --mesh MESH -o DIR
+// -q [--restart]` (its messages on ours), what it did read back from DIR/summary.json. OpenMPI runs
+// as root when told so (its environment); a failed run is an error naming the command.
+flow::SimulationSummary simulate_under_mpirun(const StudyConfig& config, const std::string& mesh,
+                                              const std::string& dir, bool restart) {
+  if (config.program.empty()) throw InternalError("study: ranks > 1 without the program to run under mpirun");
+  std::vector<std::string> command = {"mpirun", "-np",   std::to_string(config.ranks), config.program, "simulate",
+                                      config.flow_case, "--mesh", mesh, "-o", dir, "-q"};
+  if (restart) command.push_back("--restart");
+  // Without the variables of this process's own MPI (a singleton once PETSc started here), which
+  // would make mpirun take its processes for this one's.
+  const int code = io::run_process(command, {"OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1"},
+                                   {"OMPI_", "PMIX_", "OPAL_", "PRTE_", "ORTE_"});
+  std::string line;
+  for (const std::string& word : command) line += (line.empty() ? "" : " ") + word;
+  flow::SimulationSummary s;
+  if (code == 0 || code > 128) {
+    const std::string summary = dir + "/summary.json";
+    if (fs::exists(summary)) {
+      const Json j = Json::parse(io::read_file(summary));
+      s.status = j.value("status", "");
+      s.signal = j.value("signal", 0);
+      s.dofs = j.value("dofs", 0);
+      s.ranks = j.value("ranks", 0);
+      s.steps = j.value("steps", 0);
+      if (s.status == "completed" || s.status == "stopped") return s;
+    }
+  }
+  const std::string what = fmt::format("study: the flow under mpirun ({}) ended with exit code {}", line, code);
+  if (code == 2) throw InputError(what + ": its message is above");
+  throw ComputationError(what + ": see its messages above");
+}
+
 // FNV-1a, 64 bits: the stamps' fingerprints (not a security measure).
 std::string fingerprint(const std::string& text) {
   uint64_t h = 1469598103934665603ull;
@@ -72,7 +106,7 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
   StudyConfig c;
   c.path = path;
   r.known_keys(root, "", {"surface", "units", "case", "triangles", "meshes", "reference", "volume", "post", "ring", "end",
-                          "point"});
+                          "point", "ranks"});
   const std::string surface = r.text(root["surface"], "surface", "");
   if (surface.empty()) r.fail("surface", "missing: the vessel surface (STL, VTP, ...) to study");
   c.surface = io::resolve_path(path, surface);
@@ -87,6 +121,7 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
   const std::string flow_case = r.text(root["case"], "case", "");
   if (flow_case.empty()) r.fail("case", "missing: the flow case (TOML, as for `vesselmesh simulate`) run on each mesh");
   c.flow_case = io::resolve_path(path, flow_case);
+  c.ranks = r.integer(root["ranks"], "ranks", c.ranks, 1);
   c.triangles = r.number(root["triangles"], "triangles", c.triangles);
   if (c.triangles < 100) r.fail("triangles", "at least 100");
   if (root["meshes"]) {
@@ -303,7 +338,9 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       if (resume) reporter.info(fmt::format("study: {}: the flow goes on from its checkpoint", name));
       fs::create_directories(flow_dir);
       io::write_text(flow_key_file, flow_key);
-      const flow::SimulationSummary s = flow::simulate(fc, flow_dir, "", reporter, resume);
+      const flow::SimulationSummary s = config.ranks > 1
+                                            ? simulate_under_mpirun(config, volume_file, flow_dir, resume)
+                                            : flow::simulate(fc, flow_dir, "", reporter, resume);
       if (s.status == "stopped")
         throw StoppedError(fmt::format("stopped by signal {} in {}'s flow (its checkpoint is kept): run the same "
                                        "study again to go on",

@@ -70,6 +70,11 @@ struct StudyConfig {
   std::optional<double> time;
   std::vector<post::RingRequest> rings;
   std::vector<post::PointSpec> points;
+  // The processes each flow runs on (`ranks`; `vesselmesh study --ranks`): more than 1 runs
+  // `mpirun -np ranks PROGRAM simulate CASE --mesh MESH -o DIR` (mpirun from PATH), PROGRAM this
+  // vesselmesh program (set by the caller).
+  int ranks = 1;
+  std::string program;
 };
 
 // Every mistake is an InputError naming the file and the key.

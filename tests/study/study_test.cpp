@@ -43,12 +43,27 @@ tag = "wall"
 type = "wall"
 )";
 
+// One uniform mesh and the reference, two layers, a ring on the parent: a study of a few seconds.
+const char* kSmallStudy = R"(triangles = 2000
+meshes = ["uniform"]
+[reference]
+levels = 1
+factor = 1.5
+[volume]
+layers = 2
+[[ring]]
+name = "parent"
+point = [0, 0, -10]
+normal = [0, 0, 1]
+)";
+
 std::string study_text(const std::string& extra = "") {
   return std::string("surface = \"") + VESSELMESH_DATA_DIR + "/y_bifurcation.stl\"\ncase = \"flow.toml\"\n" + extra;
 }
 
 TEST(StudyFile, ReadsEveryKeyAndResolvesPaths) {
   const StudyConfig c = parse_study(study_text(R"(triangles = 3000
+ranks = 3
 meshes = ["uniform", "anisotropic"]
 [reference]
 levels = 3
@@ -79,6 +94,7 @@ point = [0, 3, 0]
                                    "/some/where/study.toml");
   EXPECT_EQ(c.flow_case, "/some/where/flow.toml");
   EXPECT_DOUBLE_EQ(c.triangles, 3000);
+  EXPECT_EQ(c.ranks, 3);
   ASSERT_EQ(c.kinds.size(), 2u);
   EXPECT_EQ(c.kinds[1], sizing::SizeKind::anisotropic);
   EXPECT_EQ(c.levels, 3);
@@ -309,18 +325,7 @@ TEST(Study, AStoppedFlowGoesOnFromItsCheckpoint) {
   unsteady.replace(unsteady.find("steady = true"), 13, "dt = 0.002\nend = 0.008\nsave_every = 4\ninitial = \"stokes\"");
   unsteady += "[solver]\npetsc_options = \"-ksp_rtol 1e-10\"\n[output]\ncheckpoint_every = 2\n";
   test::write_bytes(tmp.path("flow.toml"), unsteady);
-  test::write_bytes(tmp.path("study.toml"), study_text(R"(triangles = 2000
-meshes = ["uniform"]
-[reference]
-levels = 1
-factor = 1.5
-[volume]
-layers = 2
-[[ring]]
-name = "parent"
-point = [0, 0, -10]
-normal = [0, 0, 1]
-)"));
+  test::write_bytes(tmp.path("study.toml"), study_text(kSmallStudy));
   const StudyConfig config = read_study(tmp.path("study.toml"));
   const StudyResult first = run_study(config, tmp.path("out"));
   ASSERT_EQ(first.meshes.size(), 2u);
@@ -347,6 +352,40 @@ normal = [0, 0, 1]
     return r.meshes[0].rings[0].samples[r.meshes[0].rings[0].minimum].magnitude;
   };
   EXPECT_NEAR(least(again), least(first), 1e-6 * least(first));
+}
+
+// `ranks = 2`: each flow runs as `mpirun -np 2 vesselmesh simulate ...` and the study finds what
+// it finds on one process, to the solver's tolerance (1e-6 of the least ring WSS with -ksp_rtol
+// 1e-10); the flow's summary says it ran on 2 processes.
+TEST(Study, RunsEachFlowUnderMpirunWithRanks) {
+  if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun is not installed";
+  test::TemporaryFolder tmp;
+  test::write_bytes(tmp.path("flow.toml"), std::string(kCase) + "[solver]\npetsc_options = \"-ksp_rtol 1e-10\"\n");
+  const std::string study = kSmallStudy;
+  test::write_bytes(tmp.path("one.toml"), study_text(study));
+  test::write_bytes(tmp.path("two.toml"), study_text("ranks = 2\n" + std::string(study)));
+  const StudyResult one = run_study(read_study(tmp.path("one.toml")), tmp.path("one"));
+  StudyConfig config = read_study(tmp.path("two.toml"));
+  EXPECT_EQ(config.ranks, 2);
+  config.program = VESSELMESH_PROGRAM;
+  const StudyResult two = run_study(config, tmp.path("two"));
+  ASSERT_EQ(two.meshes.size(), one.meshes.size());
+  const nlohmann::json summary = nlohmann::json::parse(io::read_file(tmp.path("two/uniform/flow/summary.json")));
+  EXPECT_EQ(summary["ranks"], 2);
+  EXPECT_EQ(summary["status"], "completed");
+  for (size_t m = 0; m < one.meshes.size(); ++m) {
+    const post::Ring& a = one.meshes[m].rings[0];
+    const post::Ring& b = two.meshes[m].rings[0];
+    EXPECT_EQ(two.meshes[m].dofs, one.meshes[m].dofs);
+    EXPECT_NEAR(b.samples[b.minimum].magnitude, a.samples[a.minimum].magnitude,
+                1e-6 * a.samples[a.minimum].magnitude);
+  }
+  // Without the program to run, or with a bad count: said.
+  config.program.clear();
+  std::filesystem::remove_all(tmp.path("two"));
+  EXPECT_THROW(run_study(config, tmp.path("two")), InternalError);
+  test::write_bytes(tmp.path("bad.toml"), study_text("ranks = 0\n" + std::string(study)));
+  EXPECT_THROW(read_study(tmp.path("bad.toml")), InputError);
 }
 
 }  // namespace
