@@ -15,7 +15,7 @@ Command add_simulate_command(CLI::App& parent) {
       "simulate",
       "Incompressible Navier-Stokes flow (stabilized P1-P1 finite elements, BDF2, PETSc) on a volume mesh from "
       "'vesselmesh volume', as a TOML case file describes it (mesh, length_unit, [fluid], [time], one [[boundary]] "
-      "per mesh tag: velocity | traction | resistance | wall, [solver] petsc_options; see examples/). Writes "
+      "per mesh tag: velocity | traction | resistance | rcr | wall, [solver] petsc_options; see examples/). Writes "
       "DIR/fluid.pvd (velocity m/s, pressure Pa), DIR/wall.pvd (wss, wss_magnitude in Pa), DIR/log.csv and "
       "DIR/summary.json. The mesh's unit is scaled to SI (the scale is logged and written). An unsteady run "
       "writes DIR/checkpoint.bin every [output] checkpoint_every steps (default save_every), at its end and when "

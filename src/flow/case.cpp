@@ -84,6 +84,7 @@ std::string to_string(BoundaryType type) {
     case BoundaryType::velocity: return "velocity";
     case BoundaryType::traction: return "traction";
     case BoundaryType::resistance: return "resistance";
+    case BoundaryType::rcr: return "rcr";
     case BoundaryType::wall: return "wall";
   }
   return "?";
@@ -152,7 +153,9 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
     r.fail("boundary", "missing: one [[boundary]] table per tag of the mesh");
   std::set<std::string> seen;
   for (const auto& [where, table] : r.tables(root, "boundary")) {
-    r.known_keys(*table, where, {"tag", "type", "profile", "flow", "waveform", "scale", "resistance", "backflow", "harmonics"});
+    r.known_keys(*table, where, {"tag", "type", "profile", "flow", "waveform", "scale", "resistance", "backflow",
+                                 "harmonics", "proximal_resistance", "distal_resistance", "capacitance",
+                                 "distal_pressure", "initial_pressure"});
     const io::TomlView b(table);
     BoundaryCondition bc;
     bc.tag = r.text(b["tag"], where + ".tag", "");
@@ -162,8 +165,9 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
     if (type == "velocity") bc.type = BoundaryType::velocity;
     else if (type == "traction") bc.type = BoundaryType::traction;
     else if (type == "resistance") bc.type = BoundaryType::resistance;
+    else if (type == "rcr") bc.type = BoundaryType::rcr;
     else if (type == "wall") bc.type = BoundaryType::wall;
-    else r.fail(where + ".type", fmt::format("\"{}\": expected velocity, traction, resistance or wall", type));
+    else r.fail(where + ".type", fmt::format("\"{}\": expected velocity, traction, resistance, rcr or wall", type));
 
     const auto only_for = [&](const char* key, BoundaryType allowed) {
       if (b[key] && bc.type != allowed)
@@ -175,8 +179,11 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
     only_for("scale", BoundaryType::velocity);
     only_for("resistance", BoundaryType::resistance);
     only_for("harmonics", BoundaryType::velocity);
-    if (b["backflow"] && bc.type != BoundaryType::traction && bc.type != BoundaryType::resistance)
-      r.fail(where + ".backflow", "only traction and resistance boundaries have backflow stabilization");
+    for (const char* key : {"proximal_resistance", "distal_resistance", "capacitance", "distal_pressure",
+                            "initial_pressure"})
+      only_for(key, BoundaryType::rcr);
+    if (b["backflow"] && !is_natural(bc.type))
+      r.fail(where + ".backflow", "only traction, resistance and rcr boundaries have backflow stabilization");
 
     if (bc.type == BoundaryType::velocity) {
       const std::string profile = r.text(b["profile"], where + ".profile", "parabolic");
@@ -201,6 +208,19 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
     if (bc.type == BoundaryType::resistance) {
       if (!b["resistance"]) r.fail(where + ".resistance", "missing: the resistance in Pa s/m3");
       bc.resistance = r.number(b["resistance"], where + ".resistance", 0.0);
+    }
+    if (bc.type == BoundaryType::rcr) {
+      for (const char* key : {"proximal_resistance", "distal_resistance", "capacitance"})
+        if (!b[key])
+          r.fail(where + "." + key, std::string("missing: an rcr boundary needs proximal_resistance and "
+                                                "distal_resistance (Pa s/m3) and capacitance (m3/Pa)"));
+      bc.proximal_resistance = r.number(b["proximal_resistance"], where + ".proximal_resistance", 0.0, false);
+      if (bc.proximal_resistance < 0.0) r.fail(where + ".proximal_resistance", "must not be negative");
+      bc.distal_resistance = r.number(b["distal_resistance"], where + ".distal_resistance", 0.0);
+      bc.capacitance = r.number(b["capacitance"], where + ".capacitance", 0.0);
+      bc.distal_pressure = r.number(b["distal_pressure"], where + ".distal_pressure", 0.0, false);
+      if (b["initial_pressure"])
+        bc.initial_pressure = r.number(b["initial_pressure"], where + ".initial_pressure", 0.0, false);
     }
     if (b["backflow"]) c.backflow = r.number(b["backflow"], where + ".backflow", 1.0, false);
     c.boundaries.push_back(std::move(bc));

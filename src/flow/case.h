@@ -7,10 +7,12 @@
 //   [fluid]    density = 1060.0 (kg/m3), viscosity = 0.0035 (Pa s)
 //   [time]     steady = false; dt (s); end (s) or cycles with period (s); save_every (steps);
 //              period may come with end too: the wall shear stress indices cover the last period
-//   [[boundary]] tag = "inlet"; type = "velocity" | "traction" | "resistance" | "wall";
+//   [[boundary]] tag = "inlet"; type = "velocity" | "traction" | "resistance" | "rcr" | "wall";
 //              profile = "parabolic" | "plug" | "womersley"; flow = 5.0 (mL/s) or waveform = "inlet.csv"
 //              (time s, flow mL/s, repeated with its period); scale = -1.0 (multiplies the flow:
 //              an outlet given the inlet's waveform); resistance = R (Pa s/m3)
+//              type = "rcr": proximal_resistance, distal_resistance (Pa s/m3), capacitance (m3/Pa),
+//              distal_pressure (Pa, default 0), initial_pressure (Pa, default distal_pressure)
 //   [solver]   petsc_options = "..." (PETSc's options, applied after the defaults)
 // Added keys: [boundary] harmonics (womersley: the waveform's Fourier harmonics kept, default
 // 20); [time] picard (extra Oseen iterations per step, default 0), steady_tolerance
@@ -51,7 +53,7 @@ class Waveform {
   std::vector<double> times_, values_;
 };
 
-enum class BoundaryType { velocity, traction, resistance, wall };
+enum class BoundaryType { velocity, traction, resistance, rcr, wall };
 enum class Profile { parabolic, plug, womersley };
 
 struct BoundaryCondition {
@@ -61,6 +63,13 @@ struct BoundaryCondition {
   Waveform flow;             // mL/s, positive into the domain (velocity)
   std::string waveform_file;  // where `flow` came from, if a file
   double resistance = 0.0;    // Pa s / m3 (resistance)
+  // rcr (three-element Windkessel): the end's pressure is proximal_resistance x its outflow plus
+  // the capacitor's pressure P_c, with capacitance dP_c/dt = outflow - (P_c - distal_pressure) /
+  // distal_resistance; P_c starts at initial_pressure (default distal_pressure).
+  double proximal_resistance = 0.0, distal_resistance = 0.0;  // Pa s / m3
+  double capacitance = 0.0;                                   // m3 / Pa
+  double distal_pressure = 0.0;                               // Pa
+  std::optional<double> initial_pressure;                     // Pa
   int harmonics = 20;         // womersley: Fourier harmonics of the waveform kept
 };
 
@@ -88,6 +97,11 @@ struct FlowCase {
 };
 
 std::string to_string(BoundaryType type);
+// Whether the boundary's condition is a traction (traction, resistance, rcr: the pressure level is
+// set there, and flow entering through it is stabilized).
+inline bool is_natural(BoundaryType type) {
+  return type == BoundaryType::traction || type == BoundaryType::resistance || type == BoundaryType::rcr;
+}
 
 // Reads and checks a case file; every mistake is an InputError naming the file, the key and
 // what is accepted. The mesh is not read here.

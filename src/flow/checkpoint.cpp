@@ -12,7 +12,7 @@ namespace vesselmesh::flow {
 namespace {
 
 constexpr char kMagic[] = "vesselmesh checkpoint\n";
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;  // 2: the rcr ends' capacitor pressures
 
 // FNV-1a over bytes.
 struct Hash {
@@ -114,6 +114,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   w.vector(c.flow.velocity);
   w.vector(c.flow.previous);
   w.vector(c.flow.kinematic_pressure);
+  w.vector(c.flow.capacitor_pressure);
   w.value(c.saved);
   w.value(c.linear_iterations);
   w.string(c.log);
@@ -156,6 +157,7 @@ Checkpoint read_checkpoint(const std::string& path) {
   c.flow.velocity = r.vector<Vec3>();
   c.flow.previous = r.vector<Vec3>();
   c.flow.kinematic_pressure = r.vector<double>();
+  c.flow.capacitor_pressure = r.vector<double>();
   c.saved = r.value<int>();
   c.linear_iterations = r.value<int>();
   c.log = r.string();

@@ -109,6 +109,7 @@ struct NavierStokes::Impl {
   void make_solver();
   bool stokes_start = false;  // the solver to make is the Stokes start's
   std::vector<double> resistance_pressure;  // per boundary: Pa / rho, from the last step's outflow
+  std::vector<double> capacitor_pressure;   // per boundary: rcr ends' capacitor pressure P_c (Pa)
 
   int n() const { return static_cast<int>(points.size()); }
 
@@ -147,8 +148,9 @@ struct NavierStokes::Impl {
   double cfl(const std::vector<Vec3>& advect, double dt) const;
   // Every boundary's flux (m3/s) of `velocity`, summed over the processes (every process calls it).
   std::vector<double> fluxes(const std::vector<Vec3>& velocity) const;
-  // The resistance boundaries' pressure (over rho) from the current outflow.
-  void update_resistance();
+  // The resistance and rcr boundaries' pressure (over rho) from the current outflow; an rcr end's
+  // capacitor moves on by `dt` first (0: stays; steady cases: its steady value).
+  void update_resistance(double dt);
   // Copies the solved x into velocity and pressure; returns the velocity's relative change.
   double take_solution(std::vector<Vec3>& velocity, std::vector<double>& pressure) const;
   void check_finite(const StepReport& report) const;
@@ -462,12 +464,17 @@ void NavierStokes::Impl::build_boundaries(const TetMesh& ordered) {
 
   bool natural = false;
   for (const Boundary& b : boundaries)
-    natural |= b.condition.type == BoundaryType::traction || b.condition.type == BoundaryType::resistance;
+    natural |= is_natural(b.condition.type);
   if (!natural) {  // the pressure of global point 0, wherever it is local
     for (int a = 0; a < n(); ++a)
       if (local_global[a] == 0) fixed[kBlock * a + 3] = 1;
   }
   resistance_pressure.assign(boundaries.size(), 0.0);
+  capacitor_pressure.assign(boundaries.size(), 0.0);
+  for (size_t k = 0; k < boundaries.size(); ++k) {
+    const BoundaryCondition& c = boundaries[k].condition;
+    if (c.type == BoundaryType::rcr) capacitor_pressure[k] = c.initial_pressure.value_or(c.distal_pressure);
+  }
 }
 
 void NavierStokes::Impl::set_dirichlet(double time) {
@@ -504,11 +511,23 @@ std::vector<double> NavierStokes::Impl::fluxes(const std::vector<Vec3>& velocity
   return sum_all(std::move(q));
 }
 
-void NavierStokes::Impl::update_resistance() {
+// The rcr end: the 3D flow's outflow Q of the last solve (explicit, as a resistance end's), the
+// capacitor by backward Euler, C (P_c' - P_c) / dt = Q - (P_c' - P_d) / R_d: unconditionally
+// stable however small R_d C is against dt (a stiff circuit relaxes to its steady P_d + R_d Q,
+// it does not oscillate), and exact at steady state.
+void NavierStokes::Impl::update_resistance(double dt) {
   const std::vector<double> q = fluxes(u);
-  for (size_t k = 0; k < boundaries.size(); ++k)
-    if (boundaries[k].condition.type == BoundaryType::resistance)
-      resistance_pressure[k] = boundaries[k].condition.resistance * q[k] / fc.density;
+  for (size_t k = 0; k < boundaries.size(); ++k) {
+    const BoundaryCondition& c = boundaries[k].condition;
+    if (c.type == BoundaryType::resistance) resistance_pressure[k] = c.resistance * q[k] / fc.density;
+    if (c.type != BoundaryType::rcr) continue;
+    double& pc = capacitor_pressure[k];
+    if (fc.steady) pc = c.distal_pressure + c.distal_resistance * q[k];
+    else if (dt > 0.0)
+      pc = (pc + dt / c.capacitance * (q[k] + c.distal_pressure / c.distal_resistance)) /
+           (1.0 + dt / (c.distal_resistance * c.capacitance));
+    resistance_pressure[k] = (c.proximal_resistance * q[k] + pc) / fc.density;
+  }
 }
 
 double NavierStokes::Impl::take_solution(std::vector<Vec3>& velocity, std::vector<double>& pressure) const {
@@ -638,7 +657,7 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
   // Natural boundaries: backflow stabilization and the resistance's traction.
   for (size_t k = 0; k < boundaries.size(); ++k) {
     const Boundary& b = boundaries[k];
-    if (b.condition.type != BoundaryType::traction && b.condition.type != BoundaryType::resistance) continue;
+    if (!is_natural(b.condition.type)) continue;
     for (const BoundaryFace& f : b.faces) {
       const Vec3 mean = (advect[f.v[0]] + advect[f.v[1]] + advect[f.v[2]]) / 3.0;
       const double inflow = std::max(0.0, -mean.dot(f.normal));
@@ -741,7 +760,7 @@ StepReport NavierStokes::step() {
     history[a] = (first ? s.u[a] : Vec3(2.0 * s.u[a] - 0.5 * s.u_old[a])) / dt;
     advect[a] = first ? s.u[a] : Vec3(2.0 * s.u[a] - s.u_old[a]);
   }
-  s.update_resistance();
+  s.update_resistance(dt);
   s.set_dirichlet(t_next);
   report.max_cfl = s.cfl(advect, dt);
   report.time = t_next;
@@ -778,7 +797,7 @@ StepReport NavierStokes::solve_steady() {
   double pseudo_dt = 0.0, last_rate = 0.0, resume_dt = 0.0;
   bool settled = false;
   for (int iteration = 0; iteration < s.fc.steady_iterations; ++iteration) {
-    s.update_resistance();
+    s.update_resistance(0.0);
     const double used_dt = pseudo_dt;
     const auto assembly = Clock::now();
     std::vector<Vec3> history = none;
@@ -844,7 +863,7 @@ StepReport NavierStokes::start_from_stokes() {
   Impl& s = *impl_;
   const auto start = Clock::now();
   StepReport report;
-  s.update_resistance();
+  s.update_resistance(0.0);
   s.set_dirichlet(s.t);
   const std::vector<Vec3> none(s.n(), Vec3::Zero());
   const auto assembly = Clock::now();
@@ -883,6 +902,7 @@ FlowState NavierStokes::state() const {
   FlowState out;
   out.time = s.t;
   out.steps = s.step_count;
+  out.capacitor_pressure = s.capacitor_pressure;
   std::vector<double> mine(7 * s.owned);
   for (int k = 0; k < s.owned; ++k) {
     for (int i = 0; i < 3; ++i) {
@@ -909,6 +929,10 @@ void NavierStokes::restore(const FlowState& state) {
   const size_t n = s.total_points;
   if (state.velocity.size() != n || state.previous.size() != n || state.kinematic_pressure.size() != n)
     throw InputError(fmt::format("the saved state has {} points, the mesh {}", state.velocity.size(), n));
+  if (state.capacitor_pressure.size() != s.boundaries.size())
+    throw InputError(fmt::format("the saved state has {} boundaries, the case {}", state.capacitor_pressure.size(),
+                                 s.boundaries.size()));
+  s.capacitor_pressure = state.capacitor_pressure;
   for (int k = 0; k < s.n(); ++k) {
     s.u[k] = state.velocity[s.mesh_point[k]];
     s.u_old[k] = state.previous[s.mesh_point[k]];
@@ -946,6 +970,7 @@ std::vector<BoundaryFlow> NavierStokes::boundary_flows() const {
     f.flux = q[k];
     f.area = b.area;
     f.mean_pressure = b.area > 0.0 ? weighted[k] / b.area * s.fc.density : 0.0;
+    f.capacitor_pressure = s.capacitor_pressure[k];
     out.push_back(f);
   }
   return out;

@@ -44,6 +44,7 @@ struct BoundaryFlow {
   double flux = 0.0;           // m3/s through the boundary, positive out of the domain
   double mean_pressure = 0.0;  // Pa, area-weighted
   double area = 0.0;           // m2
+  double capacitor_pressure = 0.0;  // Pa: an rcr end's P_c (0 for the others)
 };
 
 // What the time stepping needs to go on (a checkpoint): per mesh point the velocity at the last
@@ -54,6 +55,7 @@ struct FlowState {
   int steps = 0;
   std::vector<Vec3> velocity, previous;
   std::vector<double> kinematic_pressure;
+  std::vector<double> capacitor_pressure;  // per boundary of the case: an rcr end's P_c (Pa), else 0
 };
 
 // How the points are shared among the MPI processes: per process its points (owned rows / 4),

@@ -165,6 +165,17 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     parts["neighbours"] = summary.partition.neighbours;
     j["partition"] = parts;
     if (!summary.peak_memory_mb.empty()) j["peak_memory_mb"] = summary.peak_memory_mb;
+    if (!summary.ends.empty()) {
+      nlohmann::ordered_json ends = nlohmann::ordered_json::array();
+      for (size_t k = 0; k < summary.ends.size(); ++k) {
+        const BoundaryFlow& f = summary.ends[k];
+        nlohmann::ordered_json e = {{"tag", f.tag}, {"type", to_string(fc.boundaries[k].type)},
+                                    {"flux_m3_s", f.flux}, {"mean_pressure_Pa", f.mean_pressure}};
+        if (fc.boundaries[k].type == BoundaryType::rcr) e["capacitor_pressure_Pa"] = f.capacitor_pressure;
+        ends.push_back(e);
+      }
+      j["ends"] = ends;  // at the last step
+    }
     j["steady"] = fc.steady;
     j["wss_method"] = fc.wss_method;
     if (!fc.steady) j["initial"] = fc.stokes_start ? "stokes" : "rest";
@@ -282,6 +293,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     const double solving = std::chrono::duration<double>(Clock::now() - solve_start).count();
     summary.seconds_per_step = summary.steps > first_step ? solving / (summary.steps - first_step) : 0.0;
     gather_memory();
+    summary.ends = ns.boundary_flows();  // every process takes part
     write_summary();
   };
 

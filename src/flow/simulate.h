@@ -44,6 +44,7 @@ struct SimulationSummary {
   std::string solver;
   PartitionReport partition;          // how the points are shared among the processes
   std::vector<double> peak_memory_mb;  // per process: its peak resident memory
+  std::vector<BoundaryFlow> ends;      // per boundary at the end: flux, mean pressure (rcr: capacitor too)
 };
 
 // `extra_petsc_options` are applied after the case's. `restart`: go on from the output folder's

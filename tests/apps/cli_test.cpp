@@ -685,15 +685,19 @@ TEST(Cli, SimulateStoppedBySigtermGoesOnWithRestart) {
 // -ksp_rtol 1e-10; the points split by PT-Scotch (balanced within 2 % of the mean here, the same
 // split when run again), each process holding its ghosts only; the summary says how the points
 // were shared and each process's peak memory. A run on 2 processes stopped at its checkpoint goes
-// on under mpirun with --restart.
+// on under mpirun with --restart. The outlet is an rcr end: its capacitor's pressure agrees too.
 TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
   if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun is not installed";
   test::TemporaryFolder tmp;
   ExampleCase example(tmp, "pipe.msh", {}, "0.02");
   example.replace("petsc_options = \"\"", "petsc_options = \"-ksp_rtol 1e-10\"");
+  // An rcr outlet: its flux summed over the processes, its capacitor the same on each.
+  example.replace("type = \"resistance\"", "type = \"rcr\"");
+  example.replace("resistance = 1.0e8", "proximal_resistance = 1.0e7\ndistal_resistance = 9.0e7\ncapacitance = 1e-10");
   test::write_bytes(tmp.path("case.toml"), example.text);
   ASSERT_EQ(run({"simulate", tmp.path("case.toml"), "-o", tmp.path("one"), "-q"}).code, 0);
   const Json one = Json::parse(read_text(tmp.path("one/summary.json")));
+  ASSERT_EQ(one["ends"][1]["type"], "rcr");
   EXPECT_EQ(one["ranks"].get<int>(), 1);
   EXPECT_EQ(one["partition"]["owned_unknowns"], Json::array({one["dofs"]}));
   EXPECT_EQ(one["partition"]["ghost_points"], Json::array({0}));
@@ -733,6 +737,10 @@ TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
     }
     EXPECT_EQ(owned, one["dofs"].get<int>());
     EXPECT_NE(read_text(tmp.path(folder + ".err")).find("points split by PT-Scotch"), std::string::npos);
+    const double capacitor = one["ends"][1]["capacitor_pressure_Pa"].get<double>();
+    EXPECT_NEAR(Json::parse(read_text(tmp.path(folder + "/summary.json")))["ends"][1]["capacitor_pressure_Pa"]
+                    .get<double>(),
+                capacitor, 1e-6 * capacitor);
     EXPECT_LT(relative_difference(point_data("one", "fluid_000000.vtu", "velocity"),
                                   point_data(folder, "fluid_000000.vtu", "velocity")),
               1e-6);

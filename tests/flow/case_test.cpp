@@ -119,6 +119,35 @@ TEST(FlowCase, MistakesAreNamed) {
   expect_error(with(kContract, "dt = 1e-3", "dt = 1e-3\ninitial = \"potential\""), "time.initial");
 }
 
+// An rcr end (issue 32): its keys read, its initial pressure the distal one unless given, and
+// each mistake named: a missing or negative value, a key of another type.
+TEST(FlowCase, RcrEndsReadTheirCircuit) {
+  const std::string rcr = with(kContract, "type = \"traction\"",
+                               "type = \"rcr\"\nproximal_resistance = 1e7\ndistal_resistance = 1.2e8\n"
+                               "capacitance = 1e-9\ndistal_pressure = 1000.0");
+  const FlowCase c = parse_case(rcr, "case.toml");
+  const BoundaryCondition& b = c.boundaries[1];
+  EXPECT_EQ(b.type, BoundaryType::rcr);
+  EXPECT_EQ(to_string(b.type), "rcr");
+  EXPECT_TRUE(is_natural(b.type));
+  EXPECT_DOUBLE_EQ(b.proximal_resistance, 1e7);
+  EXPECT_DOUBLE_EQ(b.distal_resistance, 1.2e8);
+  EXPECT_DOUBLE_EQ(b.capacitance, 1e-9);
+  EXPECT_DOUBLE_EQ(b.distal_pressure, 1000.0);
+  EXPECT_FALSE(b.initial_pressure.has_value());
+  EXPECT_DOUBLE_EQ(*parse_case(with(rcr, "distal_pressure = 1000.0", "initial_pressure = 9000.0"), "case.toml")
+                        .boundaries[1]
+                        .initial_pressure,
+                   9000.0);
+  expect_error(with(rcr, "capacitance = 1e-9", ""), "boundary[1].capacitance");
+  expect_error(with(rcr, "capacitance = 1e-9", "capacitance = -1e-9"), "boundary[1].capacitance");
+  expect_error(with(rcr, "proximal_resistance = 1e7", "proximal_resistance = -1e7"),
+               "boundary[1].proximal_resistance");
+  expect_error(with(rcr, "distal_resistance = 1.2e8", "distal_resistance = 0.0"), "boundary[1].distal_resistance");
+  expect_error(with(kContract, "flow = 5.0", "flow = 5.0\ncapacitance = 1e-9"), "boundary[0].capacitance");
+  EXPECT_NO_THROW(parse_case(with(rcr, "capacitance = 1e-9", "capacitance = 1e-9\nbackflow = 0.5"), "case.toml"));
+}
+
 TEST(FlowCase, InitialStateAtRestOrStokes) {
   EXPECT_FALSE(parse_case(kContract, "case.toml").stokes_start);
   EXPECT_TRUE(parse_case(with(kContract, "dt = 1e-3", "dt = 1e-3\ninitial = \"stokes\""), "case.toml").stokes_start);

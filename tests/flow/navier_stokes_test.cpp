@@ -20,6 +20,9 @@
 
 #include <array>
 #include <cmath>
+#include <complex>
+#include <cstdio>
+#include <fstream>
 #include <numeric>
 #include <random>
 
@@ -393,6 +396,91 @@ TEST(NavierStokes, ResistanceOutletCarriesRTimesQ) {
   EXPECT_NEAR(outlet, resistance * q, 0.01 * resistance * q);
   const double drop = 8.0 * fc.viscosity * L * 1e-3 * q / (M_PI * r * r * r * r);
   EXPECT_NEAR(inlet - outlet, drop, 0.1 * drop);
+}
+
+// An rcr outlet (issue 32), steady: its mean pressure is (R_p + R_d) Q, within 1 %.
+TEST(NavierStokes, SteadyRcrOutletCarriesTheSumOfItsResistancesTimesQ) {
+  const double R = 2.0, L = 6.0, Q = 0.5, rp = 5e7, rd = 1.5e8;  // mm, mm, mL/s, Pa s/m3
+  const TetMesh mesh = pipe_volume(R, L, 0.4);
+  FlowCase fc = pipe_case("steady = true", fmt::format("flow = {}", Q), "case.toml");
+  fc.boundaries[1].type = BoundaryType::rcr;
+  fc.boundaries[1].proximal_resistance = rp;
+  fc.boundaries[1].distal_resistance = rd;
+  fc.boundaries[1].capacitance = 1e-9;
+  NavierStokes ns(mesh, fc);
+  ns.solve_steady();
+  const double q = Q * 1e-6;
+  for (const BoundaryFlow& f : ns.boundary_flows())
+    if (f.tag == "outlet_1") {
+      EXPECT_NEAR(f.flux, q, 1e-3 * q);
+      EXPECT_NEAR(f.mean_pressure, (rp + rd) * q, 0.01 * (rp + rd) * q);
+    }
+  EXPECT_NEAR(ns.state().capacitor_pressure[1], rd * q, 1e-3 * rd * q);
+}
+
+// An rcr outlet under a sinusoidal inflow Q0 + Q1 sin(wt): over a period the outlet's pressure
+// has the circuit's impedance, R_p + R_d / (1 + i w R_d C) at w and R_p + R_d at 0 (the pipe's
+// own impedance is 40x smaller here and left in): amplitude within 2 %, phase within w dt (the
+// outflow the capacitor sees is the last step's) plus 2 % of the circuit's phase; and a stiff
+// circuit (R_d C a hundredth of dt) does not diverge, its pressure at the steady P_d + R_d Q.
+TEST(NavierStokes, RcrOutletHasTheCircuitsImpedance) {
+  test::TemporaryFolder tmp;
+  const double period = 0.2, dt = 0.001, q0 = 0.5, q1 = 0.25;  // s, s, mL/s
+  const double rp = 2e7, rd = 1.6e8, w = 2.0 * M_PI / period;
+  const double capacitance = 1.0 / (w * rd);  // w R_d C = 1: a phase of 45 degrees in the capacitor
+  {
+    std::ofstream csv(tmp.path("inflow.csv"));
+    for (int k = 0; k <= 400; ++k) {
+      const double t = period * k / 400.0;
+      csv << t << "," << q0 + q1 * std::sin(w * t) << "\n";
+    }
+  }
+  const TetMesh mesh = pipe_volume(2.0, 4.0, 0.6);
+  const auto run = [&](double c, int steps, std::vector<double>& times, std::vector<double>& pressures) {
+    FlowCase fc = pipe_case(fmt::format("dt = {}\nend = {}\ninitial = \"stokes\"", dt, steps * dt),
+                            fmt::format("waveform = \"{}\"", tmp.path("inflow.csv")), tmp.path("case.toml"));
+    fc.boundaries[1].type = BoundaryType::rcr;
+    fc.boundaries[1].proximal_resistance = rp;
+    fc.boundaries[1].distal_resistance = rd;
+    fc.boundaries[1].capacitance = c;
+    // The capacitor's periodic state at t = 0: P_d + R_d (Q0 + Q1 Im(e^{iwt} / (1 + i w R_d C))).
+    const std::complex<double> h = 1.0 / std::complex<double>(1.0, w * rd * c);
+    fc.boundaries[1].initial_pressure = rd * 1e-6 * (q0 + q1 * std::imag(h));
+    NavierStokes ns(mesh, fc);
+    ns.start_from_stokes();
+    for (int k = 0; k < steps; ++k) {
+      const StepReport r = ns.step();
+      times.push_back(r.time);
+      for (const BoundaryFlow& f : ns.boundary_flows())
+        if (f.tag == "outlet_1") pressures.push_back(f.mean_pressure);
+    }
+  };
+  std::vector<double> times, pressures;
+  const int steps = static_cast<int>(std::lround(period / dt));
+  run(capacitance, steps, times, pressures);
+  std::complex<double> first(0.0);
+  double mean = 0.0;
+  for (size_t k = 0; k < times.size(); ++k) {
+    mean += pressures[k] / times.size();
+    first += pressures[k] * std::exp(std::complex<double>(0.0, -w * times[k])) * (2.0 / times.size());
+  }
+  // p(t) = mean + Im(A e^{iwt}) with A = Q1 Z: the series' first coefficient is -i A.
+  const std::complex<double> z = rp + rd / std::complex<double>(1.0, w * rd * capacitance);
+  const std::complex<double> expected = q1 * 1e-6 * z, measured = first * std::complex<double>(0.0, 1.0);
+  std::printf("rcr outlet: mean %.4g Pa (circuit %.4g), first harmonic %.4g Pa (%.4g), phase %.4f rad (%.4f)\n", mean,
+              (rp + rd) * q0 * 1e-6, std::abs(measured), std::abs(expected), std::arg(measured), std::arg(expected));
+  EXPECT_NEAR(mean, (rp + rd) * q0 * 1e-6, 0.02 * (rp + rd) * q0 * 1e-6);
+  EXPECT_NEAR(std::abs(measured), std::abs(expected), 0.02 * std::abs(expected));
+  EXPECT_NEAR(std::arg(measured), std::arg(expected), w * dt + 0.02 * std::abs(std::arg(expected)));
+
+  // Stiff: R_d C = dt / 100.
+  std::vector<double> stiff_times, stiff;
+  run(dt / (100.0 * rd), 20, stiff_times, stiff);
+  for (size_t k = 0; k < stiff.size(); ++k) {
+    const double q = (q0 + q1 * std::sin(w * stiff_times[k])) * 1e-6;
+    ASSERT_TRUE(std::isfinite(stiff[k]));
+    EXPECT_NEAR(stiff[k], (rp + rd) * q, 0.05 * (rp + rd) * q) << "step " << k + 1;
+  }
 }
 
 // A linear solve that does not converge stops the run with the step named.
