@@ -847,10 +847,17 @@ StepReport NavierStokes::solve_steady() {
     last_rate = used_dt > 0.0 ? report.change / used_dt : 0.0;
   }
   if (!settled) {
-    const std::string advice = s.fc.pseudo_transient
-                                   ? "run it in time, or raise time.steady_iterations"
-                                   : "try time.steady_method = \"pseudo-transient\", run it in time, or raise "
-                                     "time.steady_iterations";
+    int resistive = 0;
+    for (const Boundary& b : s.boundaries)
+      resistive += b.condition.type == BoundaryType::resistance || b.condition.type == BoundaryType::rcr;
+    const std::string advice =
+        resistive > 1 ? fmt::format("the {} resistance/rcr ends are coupled explicitly (each end's pressure from its "
+                                    "last outflow), which does not converge when their resistances are much larger "
+                                    "than the vessel's: give all but one of them a traction condition for now",
+                                    resistive)
+        : s.fc.pseudo_transient ? "run it in time, or raise time.steady_iterations"
+                                : "try time.steady_method = \"pseudo-transient\", run it in time, or raise "
+                                  "time.steady_iterations";
     throw ComputationError(fmt::format("the steady solve did not settle in {} iterations (last relative change "
                                        "{:.3g} > {:.3g}): the flow may be unsteady at this Reynolds number; {}",
                                        s.fc.steady_iterations, report.change, s.fc.steady_tolerance, advice));
