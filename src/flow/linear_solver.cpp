@@ -252,7 +252,7 @@ LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::str
   check(MatSetOption(s.matrix, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
   check(MatCreateVecs(s.matrix, &s.solution, &s.rhs), "MatCreateVecs");
   if (s.distributed) {
-    const std::vector<PetscInt> rows(s.pattern.ghost_rows.begin(), s.pattern.ghost_rows.end());
+    const std::vector<int>& rows = s.pattern.ghost_rows;  // PetscInt is int (asserted above)
     IS wanted = nullptr;
     check(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(rows.size()), rows.data(), PETSC_COPY_VALUES, &wanted),
           "ISCreateGeneral");

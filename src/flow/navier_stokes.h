@@ -23,9 +23,9 @@
 // a narrow band, so that the assembly and the solver touch nearby memory); a process keeps only
 // its cells (those with a point it owns) and their points, and after a solve receives only its
 // ghost points' values. Every argument and result is in the mesh's numbering.
-// Under MPI every process makes one and calls every member alike (they are collective), but the
-// whole flow (velocity(), pressure(), state()'s fields) is on the first process only: empty on
-// the others.
+// Under MPI every process makes one and calls every member alike (they are collective); the
+// whole flow (velocity(), pressure()) is on every process, state()'s fields on the first only
+// (empty on the others).
 #pragma once
 
 #include "flow/case.h"
@@ -109,8 +109,8 @@ class NavierStokes {
   double time() const;
   int steps() const;
   int dofs() const;
-  const std::vector<Vec3>& velocity() const;   // m/s per mesh point (first process)
-  const std::vector<double>& pressure() const;  // Pa per mesh point (first process)
+  const std::vector<Vec3>& velocity() const;   // m/s per mesh point
+  const std::vector<double>& pressure() const;  // Pa per mesh point
   std::vector<BoundaryFlow> boundary_flows() const;
   std::string solver_description() const;
   PartitionReport partition() const;

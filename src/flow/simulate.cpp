@@ -76,7 +76,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
                            const std::string& extra_petsc_options, const Reporter& all_reporter, bool restart) {
   const auto start = Clock::now();
   // Under mpirun every process reads the mesh, keeps its part of it and assembles its own rows; the
-  // first gathers the flow, computes the wall shear stress and writes.
+  // flow is whole on every process after a step, the first computes the wall shear stress and writes.
   const int ranks = process_count();
   const bool writer = process_rank() == 0;
   const Reporter& reporter = writer ? all_reporter : silent_reporter();
@@ -94,12 +94,12 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     for (const BoundaryCondition& b : fc.boundaries)
       if (b.tag == name && b.type == BoundaryType::wall) wall_tags.push_back(tag);
   const std::vector<Tet> all = mesh::all_tetrahedra(mesh);
-  const post::WallSurface wall = post::extract_wall(mesh, all, wall_tags);
-  std::vector<Vec3> si(mesh.points.size());
-  for (size_t i = 0; i < si.size(); ++i) si[i] = mesh.points[i] * fc.length_scale;
-  // The wall shear stress is computed where the whole flow is gathered: on the first process.
+  // The wall and its shear stress where the whole flow is gathered and written: on the first process.
+  const post::WallSurface wall = writer ? post::extract_wall(mesh, all, wall_tags) : post::WallSurface{};
   std::optional<post::WallShearOperator> wall_shear;
   if (writer) {
+    std::vector<Vec3> si(mesh.points.size());
+    for (size_t i = 0; i < si.size(); ++i) si[i] = mesh.points[i] * fc.length_scale;
     wall_shear.emplace(wall, all, si, post::parse_wss_method(fc.wss_method));
     reporter.info(fmt::format("wall shear stress: {} method on {} wall points{}", fc.wss_method,
                               wall.mesh.num_points(),
@@ -108,7 +108,6 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
                                                 wall_shear->face_fallbacks())
                                   : ""));
   }
-  std::vector<Vec3>().swap(si);
 
   if (writer) std::filesystem::create_directories(output_dir);
   const PartitionReport partition = ns.partition();

@@ -32,9 +32,11 @@ int run_process(const std::vector<std::string>& argv, const std::vector<std::str
   std::vector<char*> args, env;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
+  std::vector<std::string> left_out = drop;  // and ours of the names `environment` sets
+  for (const std::string& e : environment) left_out.push_back(e.substr(0, e.find('=') + 1));
   for (char** e = environ; *e; ++e) {
     const std::string_view entry(*e);
-    if (std::none_of(drop.begin(), drop.end(), [&](const std::string& p) { return entry.starts_with(p); }))
+    if (std::none_of(left_out.begin(), left_out.end(), [&](const std::string& p) { return entry.starts_with(p); }))
       env.push_back(*e);
   }
   for (const std::string& e : environment) env.push_back(const_cast<char*>(e.c_str()));

@@ -9,7 +9,7 @@ namespace vesselmesh::io {
 
 // Runs `argv` (argv[0] looked up on PATH), its output and errors on ours, with our environment
 // less the variables whose names begin with one of `drop` and with `environment`'s NAME=VALUE
-// entries added; waits for it. SIGTERM and SIGINT reaching this process
+// entries set (in place of ours of the same name); waits for it. SIGTERM and SIGINT reaching this process
 // meanwhile are passed on to it (mpirun passes them on to its processes), so that it ends as it
 // would have alone. Returns its exit code, or 128 + the signal that ended it; InputError when the
 // program cannot be started (not found), naming it.

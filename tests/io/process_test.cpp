@@ -30,6 +30,9 @@ TEST(RunProcess, GivesTheExitCodeTheEnvironmentAndTheSignal) {
   setenv("VESSELMESH_TEST_B", "ours", 1);
   ASSERT_EQ(run_process({"sh", "-c", "echo \"[$VESSELMESH_TEST_B]\" >" + out}, {}, {"VESSELMESH_TEST_"}), 0);
   EXPECT_EQ(read_back(out), "[]\n");
+  // A variable we have, set anew: the new value, not ours.
+  ASSERT_EQ(run_process({"sh", "-c", "echo \"[$VESSELMESH_TEST_B]\" >" + out}, {"VESSELMESH_TEST_B=theirs"}), 0);
+  EXPECT_EQ(read_back(out), "[theirs]\n");
   EXPECT_EQ(run_process({"sh", "-c", "kill -TERM $$"}), 128 + 15);
   try {
     run_process({"vesselmesh-no-such-program"});
