@@ -96,6 +96,7 @@ Command add_volume_command(CLI::App& parent) {
     std::string output, algorithm = "delaunay", end_names;
     std::vector<std::string> ends;
     volume::VolumeOptions volume;
+    int target_points = 0;
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
@@ -140,6 +141,11 @@ Command add_volume_command(CLI::App& parent) {
                   "Growth of the interior's sizes with the depth below the boundary layer: the size grows by ln(g) per "
                   "unit length, as the surface's gradation (1: the wall's size throughout, up to the core bound)")
       ->capture_default_str();
+  app->add_option("--target-points", o->target_points,
+                  "A volume of about this many points (within 2 %): --interior-size is the start, then scaled (the "
+                  "layer and the wall kept, only the interior's count moves; at most four builds); the factor used is "
+                  "printed and in --json (interior_size.factor). For comparing meshes of equal volume counts")
+      ->check(CLI::PositiveNumber);
   app->add_option("--sliver-angle", o->volume.sliver_angle_deg,
                   "Interior tetrahedra with a dihedral angle under this (degrees) are improved after the fill by flips, "
                   "moves of inside points and insertions (the boundary is kept); 0: the fill as it comes")
@@ -184,7 +190,10 @@ Command add_volume_command(CLI::App& parent) {
               reporter.warning(fmt::format("no centerlines ({}): the interior's core is not bounded by the radius",
                                            e.what()));
             }
-            const volume::VolumeResult result = volume::build_volume(wall, surface.ends, radius, options, reporter);
+            const volume::VolumeResult result =
+                o->target_points > 0 ? volume::build_volume_with_points(wall, surface.ends, radius, options,
+                                                                        o->target_points, 0.02, reporter)
+                                     : volume::build_volume(wall, surface.ends, radius, options, reporter);
             if (format == VolumeFormat::vtu)
               io::write_vtu(o->output, result.mesh, {Field::scalar("radius", result.radius)});
             else
@@ -211,7 +220,7 @@ Command add_volume_command(CLI::App& parent) {
               json["layer_cells"] = r.layer_tets + r.layer_prisms;
               json["interior_tetrahedra"] = r.interior_tets;
               json["interior_points"] = r.interior_points;
-              json["interior_size"] = {{"factor", options.interior.factor},
+              json["interior_size"] = {{"factor", r.interior_factor},
                                        {"gradation", options.interior.gradation},
                                        {"core_fraction", options.interior.core_fraction},
                                        {"at_wall_mm", {{"min", round_to(r.interior_size_min, 5)},

@@ -142,7 +142,8 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
   }
   if (const toml::table* t = root["volume"].as_table()) {
     r.known_keys(*t, "volume", {"layers", "thickness_ratio", "layer_angle", "layer_split_angle", "algorithm",
-                                "inlet", "end_names", "interior_size", "interior_gradation"});
+                                "inlet", "end_names", "interior_size", "interior_gradation",
+                                "equal_volume_nodes"});
     const io::TomlView v = root["volume"];
     c.layers = r.integer(v["layers"], "volume.layers", c.layers, 0);
     c.thickness_ratio = r.number(v["thickness_ratio"], "volume.thickness_ratio", c.thickness_ratio);
@@ -161,6 +162,7 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
     if (!(c.interior.factor > 0.0)) r.fail("volume.interior_size", "give a factor > 0 (1: the wall's size)");
     c.interior.gradation = r.number(v["interior_gradation"], "volume.interior_gradation", c.interior.gradation);
     if (!(c.interior.gradation >= 1.0)) r.fail("volume.interior_gradation", "give a growth >= 1 (1: none)");
+    c.equal_volume_nodes = r.flag(v["equal_volume_nodes"], "volume.equal_volume_nodes", c.equal_volume_nodes);
     c.inlet = r.integer(v["inlet"], "volume.inlet", -1, 0);
     c.end_names = r.strings(v["end_names"], "volume.end_names");
   }
@@ -244,10 +246,10 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
   // What every mesh depends on: the input's bytes, the options, the version.
   std::string common = fmt::format(
       "vesselmesh {}\n{}\nunits={}\nlayers={} ratio={} layer_angle={} split_angle={} algorithm={} inlet={}\n"
-      "interior sized by design: factor={} gradation={} core={}\n",
+      "interior sized by design: factor={} gradation={} core={} equal volume nodes={} (Gmsh Delaunay optimized to 0.8)\n",
       VESSELMESH_VERSION, fingerprint(io::read_file(config.surface)), config.units, config.layers,
       config.thickness_ratio, config.layer_angle, config.layer_split_angle, config.algorithm, config.inlet,
-      config.interior.factor, config.interior.gradation, config.interior.core_fraction);
+      config.interior.factor, config.interior.gradation, config.interior.core_fraction, config.equal_volume_nodes);
   for (const std::string& n : config.end_names) common += n + ",";
   for (const volume::EndAt& e : config.end_at)
     common += fmt::format("\nend {} {} {} {}", e.name, e.point.x(), e.point.y(), e.point.z());
@@ -266,6 +268,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
     targets.push_back(config.triangles * std::pow(config.factor, k));
   }
 
+  int volume_target = 0;  // the first compared mesh's volume nodes, when the others are to have them
   for (size_t m = 0; m < plan.size(); ++m) {
     const auto& [name, kind] = plan[m];
     MeshRun run;
@@ -274,8 +277,10 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
     run.target_triangles = targets[m];
     run.folder = (fs::path(folder) / name).string();
     fs::create_directories(run.folder);
-    const std::string mesh_key =
-        fingerprint(common + fmt::format("kind={} triangles={}\n", sizing::size_kind_name(kind), run.target_triangles));
+    const int volume_points = run.series ? 0 : volume_target;
+    const std::string mesh_key = fingerprint(common + fmt::format("kind={} triangles={} volume points={}\n",
+                                                                  sizing::size_kind_name(kind), run.target_triangles,
+                                                                  volume_points));
     const std::string flow_key = fingerprint(mesh_key + case_text);
     const std::string surface_file = run.folder + "/surface.vtp", volume_file = run.folder + "/volume.msh";
     const std::string flow_dir = run.folder + "/flow", stamp_file = run.folder + "/stamp.json";
@@ -288,6 +293,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       run.tetrahedra = j["tetrahedra"];
       run.dofs = j["dofs"];
       run.min_dihedral = j["min_dihedral"];
+      run.interior_size = j.value("interior_size", config.interior.factor);
       for (const auto& [k, v] : j["seconds"].items()) run.seconds[k] = v.get<double>();
       run.reused = true;
       reporter.info(fmt::format("study: {} ({} of {}): reused from {}", name, m + 1, plan.size(), stamp_file));
@@ -320,8 +326,13 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       vo.inlet = config.inlet;
       vo.end_names = config.end_names;
       vo.end_at = config.end_at;
+      if (volume_points > 0)
+        reporter.info(fmt::format("study: {}: its volume sized to {} nodes, as the first compared mesh's", name,
+                                  volume_points));
       const volume::VolumeResult volume_mesh =
-          volume::build_volume(wall, analysis::open_ends(wall), wall_distance.radius, vo, reporter);
+          volume_points > 0 ? volume::build_volume_with_points(wall, analysis::open_ends(wall), wall_distance.radius,
+                                                               vo, volume_points, 0.02, reporter)
+                            : volume::build_volume(wall, analysis::open_ends(wall), wall_distance.radius, vo, reporter);
       io::write_msh(volume_file, volume_mesh.mesh);
       const volume::VolumeQuality quality = volume::measure_volume(volume_mesh.mesh, volume_mesh.radius);
       run.seconds["volume"] = since(step);
@@ -353,6 +364,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       run.tetrahedra = quality.tets + 3 * quality.prisms;
       run.dofs = s.dofs;
       run.min_dihedral = quality.min_dihedral;
+      run.interior_size = volume_mesh.report.interior_factor;
       Json j = {{"key", flow_key},
                 {"mesh", name},
                 {"surface_triangles", run.surface_triangles},
@@ -361,6 +373,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
                 {"tetrahedra", run.tetrahedra},
                 {"dofs", run.dofs},
                 {"min_dihedral", run.min_dihedral},
+                {"interior_size", run.interior_size},
                 {"seconds", run.seconds}};
       io::write_text(stamp_file, j.dump(2) + "\n");
     }
@@ -373,6 +386,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       reporter.warning(warning);
       result.warnings.push_back(warning);
     }
+    if (!run.series && config.equal_volume_nodes && volume_target == 0) volume_target = run.volume_points;
     result.meshes.push_back(run);
   }
   result.reference = static_cast<int>(result.meshes.size()) - 1;
@@ -410,7 +424,7 @@ std::string volume_count_warning(const std::vector<MeshRun>& meshes) {
   if (!least || most->volume_points <= 1.05 * least->volume_points) return "";
   return fmt::format("the compared meshes' volume nodes differ by {:.1f} % ({} for {}, {} for {}): at equal surface "
                      "counts their interiors are not alike, and the comparison weighs the volume as well as the wall "
-                     "(set [volume] interior_size, or check the layer)",
+                     "(set [volume] equal_volume_nodes = true, or check the layer)",
                      100.0 * (static_cast<double>(most->volume_points) / least->volume_points - 1.0),
                      least->volume_points, least->name, most->volume_points, most->name);
 }

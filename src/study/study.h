@@ -27,7 +27,10 @@
 //               the compared meshes no longer have equal counts), algorithm = "delaunay", inlet = K,
 //               end_names = ["inlet", "outlet_1", ...], interior_size = 1.0 and
 //               interior_gradation = 1.3 (volume/interior_size.h: the same interior field for
-//               every mesh, so that equal surface counts give comparable volumes)
+//               every mesh, so that equal surface counts give comparable volumes),
+//               equal_volume_nodes = true (each compared mesh after the first has its interior's
+//               size factor scaled until its volume has the first's node count within 2 %:
+//               volume::build_volume_with_points; the factor used is in Table 1)
 //   [post]      time = 0.21 (s; default the last saved)
 //   [[ring]]    name = "ring1", point = [x, y, z], normal = [nx, ny, nz] (omit it: the plane
 //               normal to the centerline nearest the point), reference = [rx, ry, rz] (optional)
@@ -64,6 +67,7 @@ struct StudyConfig {
   double layer_split_angle = 0.0;  // degrees: volume::BoundaryLayerOptions::split_angle_deg
   std::string algorithm = "delaunay";
   volume::InteriorSizeOptions interior;
+  bool equal_volume_nodes = true;  // the compared meshes' volumes of the first one's node count
   int inlet = -1;
   std::vector<std::string> end_names;
   std::vector<volume::EndAt> end_at;
@@ -88,6 +92,7 @@ struct MeshRun {
   int surface_triangles = 0, surface_points = 0;
   int volume_points = 0, tetrahedra = 0, dofs = 0;
   double min_dihedral = 0.0;  // degrees
+  double interior_size = 1.0;  // the interior's size factor its volume was made with
   std::map<std::string, double> seconds;  // remesh, volume, flow (those of the run that made them)
   bool reused = false;                    // loaded from an earlier run
   std::string folder;                     // DIR/<name>

@@ -106,10 +106,10 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
                     fmt::format("{} ({:+.1f} %)", m.surface_triangles,
                                 100.0 * (m.surface_triangles / m.target_triangles - 1.0)),
                     std::to_string(m.surface_points),
-                    std::to_string(m.volume_points), std::to_string(m.tetrahedra), std::to_string(m.dofs),
-                    number(m.min_dihedral, 3)});
+                    std::to_string(m.volume_points), number(m.interior_size, 3), std::to_string(m.tetrahedra),
+                    std::to_string(m.dofs), number(m.min_dihedral, 3)});
   doc.table({"mesh", "role", "target triangles", "surface triangles", "surface nodes", "volume nodes",
-             "tetrahedra (prisms as 3)", "flow unknowns", "least dihedral (deg)"},
+             "interior size factor", "tetrahedra (prisms as 3)", "flow unknowns", "least dihedral (deg)"},
             rows);
 
   // Fig. 11: WSS along each ring.
@@ -278,7 +278,7 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
     list.push_back({{"name", m.name}, {"series", m.series}, {"target_triangles", m.target_triangles},
                     {"surface_triangles", m.surface_triangles}, {"surface_points", m.surface_points},
                     {"volume_points", m.volume_points}, {"tetrahedra", m.tetrahedra}, {"dofs", m.dofs},
-                    {"min_dihedral_deg", m.min_dihedral}, {"seconds", m.seconds}, {"reused", m.reused},
+                    {"min_dihedral_deg", m.min_dihedral}, {"interior_size", m.interior_size}, {"seconds", m.seconds}, {"reused", m.reused},
                     {"rings", rings}});
   }
   j["meshes"] = list;

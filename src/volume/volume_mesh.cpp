@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 namespace vesselmesh::volume {
@@ -177,6 +178,7 @@ VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::Op
   check_interior_size_options(options.interior);
   VolumeResult result;
   VolumeReport& report = result.report;
+  report.interior_factor = options.interior.factor;
   assign_tags(ends, options, report);
   Wall wall = extract_wall(surface, ends);
   std::vector<double> wall_radius(wall.mesh.num_points());
@@ -360,6 +362,32 @@ VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::Op
   const int levels = options.layer.layers > 0 ? options.layer.layers + 1 : 1;
   for (int k = 0; k < levels; ++k)
     for (int v = 0; v < n; ++v) result.radius[k * n + v] = wall_radius[v];
+  return result;
+}
+
+VolumeResult build_volume_with_points(const TriMesh& surface, const std::vector<analysis::OpenEnd>& ends,
+                                      const std::vector<double>& radius, const VolumeOptions& options,
+                                      int target_points, double tolerance, const Reporter& reporter) {
+  VM_CHECK(target_points > 0 && tolerance > 0.0, "build_volume_with_points: a target count > 0 and a tolerance > 0");
+  constexpr int kBuilds = 4;
+  VolumeOptions o = options;
+  VolumeResult result = build_volume(surface, ends, radius, o, reporter);
+  for (int build = 1;; ++build) {
+    const int points = result.mesh.num_points(), interior = result.report.interior_points;
+    if (std::abs(points - target_points) <= tolerance * target_points || build == kBuilds) break;
+    const int wanted = target_points - (points - interior);
+    if (wanted <= 0)
+      throw InputError(fmt::format("a volume of {} points cannot be made: the boundary layer and the caps alone have "
+                                   "{} (ask for more points, or fewer layers)",
+                                   target_points, points - interior));
+    // Points inside go as the size to the power -3; the step is bounded, so that a count the
+    // fill cannot follow (a tiny interior) does not send the factor far.
+    const double scale = std::clamp(std::cbrt(static_cast<double>(std::max(interior, 1)) / wanted), 0.5, 2.0);
+    o.interior.factor *= scale;
+    reporter.info(fmt::format("volume: {} points for {} asked: the interior's size factor {:.4g} -> {:.4g}", points,
+                              target_points, o.interior.factor / scale, o.interior.factor));
+    result = build_volume(surface, ends, radius, o, reporter);
+  }
   return result;
 }
 

@@ -70,6 +70,7 @@ struct VolumeReport {
   int layers = 0;
   int layer_tets = 0, layer_prisms = 0, interior_tets = 0;
   int interior_points = 0;  // points the fill added inside
+  double interior_factor = 1.0;  // the interior size factor used (options.interior.factor)
   // The interior size field at the wall's points (mm): least, median, largest.
   double interior_size_min = 0.0, interior_size_median = 0.0, interior_size_max = 0.0;
   int shrunk_vertices = 0;     // wall points whose layer is thinner than asked
@@ -98,6 +99,17 @@ struct VolumeResult {
 VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::OpenEnd>& ends,
                           const std::vector<double>& radius, const VolumeOptions& options,
                           const Reporter& reporter = silent_reporter());
+
+// The volume of about `target_points` points (within `tolerance`, relative), for comparing meshes
+// of equal volume counts (the study): options.interior.factor is scaled, the layer and the wall
+// kept, so only the interior's count moves, about as the factor to the power -3. Starts from
+// options.interior.factor; at most four builds (the last is returned if none is within the
+// tolerance); the factor used is in the report (interior_factor). InputError when the layer and
+// the caps alone have more points than the target.
+VolumeResult build_volume_with_points(const TriMesh& surface, const std::vector<analysis::OpenEnd>& ends,
+                                      const std::vector<double>& radius, const VolumeOptions& options,
+                                      int target_points, double tolerance = 0.02,
+                                      const Reporter& reporter = silent_reporter());
 
 // Checks a tetrahedral mesh the way build_volume does before handing it on: every tetrahedron
 // (and prism split) positive, and the boundary triangles exactly the faces used by one cell,

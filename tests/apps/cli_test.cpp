@@ -504,6 +504,17 @@ TEST(Cli, VolumeWritesTaggedMeshesThatQualityReadsBack) {
   EXPECT_TRUE(t.json()["closed_boundary"].get<bool>());
   EXPECT_EQ(t.json()["boundary_triangles"]["wall"], j["boundary_triangles"]["wall"]);
   EXPECT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.msh"), "--algorithm", "netgen"}).code, 2);
+  // --target-points: a volume of about that many points, the interior's factor used in the JSON.
+  const int points = j["points"].get<int>(), target = points + points / 5;
+  const RunResult sized = run({"volume", tmp.path("p.stl"), "-o", tmp.path("n.msh"), "--layers", "3", "--target-points",
+                               std::to_string(target), "--json"});
+  ASSERT_EQ(sized.code, 0) << sized.err;
+  EXPECT_NEAR(sized.json()["points"].get<int>(), target, 0.02 * target);
+  EXPECT_LT(sized.json()["interior_size"]["factor"].get<double>(), 1.0);
+  EXPECT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.msh"), "--target-points", "0"}).code, 2);
+  const RunResult few = run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.msh"), "--target-points", "10"});
+  EXPECT_EQ(few.code, 2);
+  EXPECT_NE(few.err.find("the boundary layer and the caps alone"), std::string::npos) << few.err;
   EXPECT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.vtk")}).code, 2);
   EXPECT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.msh"), "--inlet", "5"}).code, 2);
   EXPECT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.msh"), "--thickness-ratio", "0.9"}).code, 2);
@@ -530,7 +541,7 @@ TEST(Cli, VolumeWritesTaggedMeshesThatQualityReadsBack) {
   EXPECT_EQ(closed.code, 2);
   EXPECT_NE(last_line(closed.err).find("no open or flat-capped end"), std::string::npos) << closed.err;
   EXPECT_EQ(run({"quality", tmp.path("p.stl")}).code, 2);
-  EXPECT_EQ(tmp.files(), (std::vector<std::string>{"p.stl", "s.stl", "t.msh", "v.msh", "v.vtu"}));
+  EXPECT_EQ(tmp.files(), (std::vector<std::string>{"n.msh", "p.stl", "s.stl", "t.msh", "v.msh", "v.vtu"}));
 }
 
 std::string read_text(const std::string& path) {

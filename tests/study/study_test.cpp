@@ -77,6 +77,7 @@ algorithm = "hxt"
 end_names = ["in", "a", "b"]
 interior_size = 0.8
 interior_gradation = 1.1
+equal_volume_nodes = false
 [post]
 time = 0.21
 [[ring]]
@@ -106,6 +107,7 @@ point = [0, 3, 0]
   EXPECT_EQ(c.algorithm, "hxt");
   EXPECT_DOUBLE_EQ(c.interior.factor, 0.8);
   EXPECT_DOUBLE_EQ(c.interior.gradation, 1.1);
+  EXPECT_FALSE(c.equal_volume_nodes);
   EXPECT_EQ(c.end_names, (std::vector<std::string>{"in", "a", "b"}));
   ASSERT_TRUE(c.time.has_value());
   EXPECT_DOUBLE_EQ(*c.time, 0.21);
@@ -141,6 +143,9 @@ TEST(StudyFile, NamesTheKeyOfEveryMistake) {
             std::string::npos);
   EXPECT_DOUBLE_EQ(parse_study(study_text(ring), "s.toml").layer_angle, 0.0);  // the paper's layer by default
   EXPECT_DOUBLE_EQ(parse_study(study_text(ring), "s.toml").layer_split_angle, 0.0);  // and its wall as meshed
+  EXPECT_TRUE(parse_study(study_text(ring), "s.toml").equal_volume_nodes);  // volumes of equal node counts
+  EXPECT_NE(error(study_text("[volume]\nequal_volume_nodes = 2\n" + ring)).find("volume.equal_volume_nodes"),
+            std::string::npos);
   EXPECT_NE(error(study_text("[[ring]]\nname = \"a b\"\npoint = [0, 0, 0]\n")).find("ring[0].name"), std::string::npos);
   EXPECT_NE(error(study_text("[[ring]]\nname = \"r\"\npoint = [0, 0]\n")).find("ring[0].point: expected three"),
             std::string::npos);

@@ -113,5 +113,39 @@ TEST(InteriorSize, EveryEngineMeetsTheField) {
   EXPECT_LT(*most, 1.75 * *least) << "interior points per engine differ too much";
 }
 
+// A volume of a given node count (the study's compared meshes): the same pipe's wall at two
+// resolutions; the coarser wall's volume is sized to the finer one's count by its interior's
+// factor alone (the layer, the wall's points times the levels, stays), within the 2 % asked, the
+// same run after run. A target the layer alone exceeds is an InputError saying so.
+TEST(InteriorSize, AVolumeOfAGivenNodeCount) {
+  const double R = 2.0;
+  const auto volume_of = [&](double resolution) {
+    const TriMesh pipe = synth::cylinder({.radius = R, .length = 10.0, .resolution = resolution});
+    return std::make_pair(pipe, std::vector<double>(pipe.points.size(), R));
+  };
+  const auto [fine, fine_radius] = volume_of(0.3);
+  const auto [coarse, coarse_radius] = volume_of(0.4);
+  VolumeOptions options;
+  const int target = build_volume(fine, analysis::open_ends(fine), fine_radius, options).mesh.num_points();
+  const VolumeResult as_given = build_volume(coarse, analysis::open_ends(coarse), coarse_radius, options);
+  ASSERT_LT(as_given.mesh.num_points(), 0.9 * target);  // the coarser wall's volume is smaller as given
+  const VolumeResult sized = build_volume_with_points(coarse, analysis::open_ends(coarse), coarse_radius, options, target);
+  std::printf("pipe volumes: %d points (finer wall), %d (coarser wall, factor 1), %d (coarser wall, factor %.3f)\n",
+              target, as_given.mesh.num_points(), sized.mesh.num_points(), sized.report.interior_factor);
+  EXPECT_NEAR(sized.mesh.num_points(), target, 0.02 * target);
+  EXPECT_LT(sized.report.interior_factor, 1.0);
+  EXPECT_EQ(sized.mesh.num_points() - sized.report.interior_points,
+            as_given.mesh.num_points() - as_given.report.interior_points);  // the layer and caps kept
+  const VolumeResult again = build_volume_with_points(coarse, analysis::open_ends(coarse), coarse_radius, options, target);
+  EXPECT_EQ(again.mesh.points, sized.mesh.points);
+  EXPECT_EQ(again.mesh.tets, sized.mesh.tets);
+  try {
+    build_volume_with_points(coarse, analysis::open_ends(coarse), coarse_radius, options, 100);
+    ADD_FAILURE() << "a target under the layer's own points was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the boundary layer and the caps alone"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace vesselmesh::volume
