@@ -3,6 +3,7 @@
 #include "io/atomic_file.h"
 #include "post/wall_series.h"
 #include "study/chart.h"
+#include "study/gci.h"
 #include "study/picture.h"
 #include "study/raster.h"
 
@@ -78,6 +79,48 @@ struct Document {
 std::string number(double v, int digits = 4) { return std::isfinite(v) ? fmt::format("{:.{}g}", v, digits) : "n/a"; }
 std::string percent(double v) { return std::isfinite(v) ? fmt::format("{:+.2f} %", v) : "n/a"; }
 
+// The ring's mean WSS magnitude over its arc length (trapezoids between samples).
+double ring_mean(const post::Ring& ring) {
+  double sum = 0.0, length = 0.0;
+  for (size_t k = 1; k < ring.samples.size(); ++k) {
+    const double ds = ring.samples[k].arc_length - ring.samples[k - 1].arc_length;
+    sum += 0.5 * ds * (ring.samples[k].magnitude + ring.samples[k - 1].magnitude);
+    length += ds;
+  }
+  return length > 0.0 ? sum / length : ring.samples.empty() ? 0.0 : ring.samples.front().magnitude;
+}
+
+// The three finest meshes of the uniform family (the series and the compared uniform mesh when
+// its interior was made as the series' were), finest first; empty when there are fewer.
+std::vector<const MeshRun*> convergence_grids(const StudyConfig& config, const std::vector<MeshRun>& meshes) {
+  std::vector<const MeshRun*> family;
+  for (const MeshRun& m : meshes)
+    if (m.series || (m.name == "uniform" && m.interior_size == config.interior.factor)) family.push_back(&m);
+  std::sort(family.begin(), family.end(),
+            [](const MeshRun* a, const MeshRun* b) { return a->volume_points > b->volume_points; });
+  if (family.size() < 3 || family[0]->volume_points <= family[1]->volume_points ||
+      family[1]->volume_points <= family[2]->volume_points)
+    return {};
+  family.resize(3);
+  return family;
+}
+
+// A difference d (of the quantity's unit) against the reference's uncertainty: "larger" than its
+// GCI band, "within" it; without an order, "within" the series' spread (the uncertainty is at
+// least that), else "unknown".
+std::string against_band(double d, const GridConvergence& g) {
+  if (g.found) return std::abs(d) > g.band() ? "larger" : "within";
+  if (std::isfinite(g.spread) && std::abs(d) <= g.spread * std::abs(g.phi1)) return "within (the series' spread)";
+  return "unknown";
+}
+
+// The reference's uncertainty in a table cell: the GCI, or the series' spread as a lower bound.
+std::string uncertainty(const GridConvergence& g) {
+  if (g.found) return fmt::format("{:.2f} %", 100 * g.gci_fine);
+  if (std::isfinite(g.spread) && g.spread > 0.0) return fmt::format(">= {:.2f} % (spread)", 100 * g.spread);
+  return "n/a";
+}
+
 }  // namespace
 
 void write_report(const StudyConfig& config, StudyResult& result, const std::string& folder, const Reporter& reporter) {
@@ -148,30 +191,120 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
       if (&m != &reference) chart.categories.push_back(m.name);
     return chart;
   };
+  // The reference's own uncertainty: Richardson extrapolation and the GCI over the uniform
+  // family's three finest meshes (Celik et al. 2008), for each ring's minimum and mean and each point.
+  const std::vector<const MeshRun*> grids = convergence_grids(config, meshes);
+  std::vector<GridConvergence> ring_min_gci(result.rings.size()), ring_mean_gci(result.rings.size()),
+      point_gci(config.points.size());
+  Json convergence = Json::array();
+  if (grids.size() == 3 && grids[0] == &reference) {
+    doc.heading("The reference's uncertainty (grid convergence)");
+    doc.paragraph(fmt::format(
+        "Richardson extrapolation and Roache's Grid Convergence Index over the three finest uniform meshes ({}, {} and "
+        "{}: {}, {} and {} volume nodes), as in Celik et al., J. Fluids Eng. 130 (2008) 078001: the observed order p, "
+        "the extrapolated value, and GCI_fine, the reference's relative uncertainty (a factor of safety of 1.25); the "
+        "asymptotic ratio GCI32 / (r21^p GCI21) is near 1 when the series is in its asymptotic range.",
+        grids[0]->name, grids[1]->name, grids[2]->name, grids[0]->volume_points, grids[1]->volume_points,
+        grids[2]->volume_points));
+    std::vector<std::vector<std::string>> rows;
+    const auto add = [&](const std::string& what, const std::array<double, 3>& phi) {
+      const GridConvergence g = grid_convergence(grids[0]->volume_points, grids[1]->volume_points,
+                                                 grids[2]->volume_points, phi[0], phi[1], phi[2]);
+      rows.push_back({what, number(phi[2]), number(phi[1]), number(phi[0]), number(g.order, 3), number(g.extrapolated),
+                      uncertainty(g), number(g.asymptotic_ratio, 3), g.status});
+      convergence.push_back({{"quantity", what},
+                             {"meshes", {grids[0]->name, grids[1]->name, grids[2]->name}},
+                             {"volume_points", {grids[0]->volume_points, grids[1]->volume_points, grids[2]->volume_points}},
+                             {"values_Pa", {phi[0], phi[1], phi[2]}},
+                             {"order", g.found ? Json(g.order) : Json(nullptr)},
+                             {"extrapolated_Pa", g.found ? Json(g.extrapolated) : Json(nullptr)},
+                             {"gci_fine_percent", g.found ? Json(100 * g.gci_fine) : Json(nullptr)},
+                             {"asymptotic_ratio", g.found ? Json(g.asymptotic_ratio) : Json(nullptr)},
+                             {"spread_percent", std::isfinite(g.spread) ? Json(100 * g.spread) : Json(nullptr)},
+                             {"status", g.status}});
+      return g;
+    };
+    const auto find_ring = [&](const MeshRun* m, size_t r) -> const post::Ring& { return m->rings[r]; };
+    for (size_t r = 0; r < result.rings.size(); ++r) {
+      std::array<double, 3> least{}, mean{};
+      for (int k = 0; k < 3; ++k) {
+        const post::Ring& ring = find_ring(grids[k], r);
+        least[k] = ring.samples[ring.minimum].magnitude;
+        mean[k] = ring_mean(ring);
+      }
+      ring_min_gci[r] = add(fmt::format("ring {}: minimum", result.rings[r].name), least);
+      ring_mean_gci[r] = add(fmt::format("ring {}: mean", result.rings[r].name), mean);
+    }
+    for (size_t p = 0; p < config.points.size(); ++p) {
+      std::array<double, 3> value{};
+      for (int k = 0; k < 3; ++k) value[k] = grids[k]->points[p].value.norm();
+      point_gci[p] = add(fmt::format("point {}", config.points[p].name), value);
+    }
+    doc.table({"quantity (Pa)", grids[2]->name, grids[1]->name, grids[0]->name + " (reference)", "order p",
+               "extrapolated", "GCI_fine (or the series' spread)", "asymptotic ratio", "convergence"},
+              rows);
+  } else {
+    doc.heading("The reference's uncertainty (grid convergence)");
+    doc.paragraph("Not estimated: it needs three uniform meshes, the finest being the reference (the compared uniform "
+                  "mesh and [reference] levels >= 2, or levels >= 3). Without it, a difference from the reference cannot "
+                  "be told from the reference's own error.");
+  }
+  const bool have_gci = !convergence.empty();
+
   if (!result.rings.empty()) {
     doc.heading("Minimum WSS on each ring against the reference");
     BarChart chart = difference_chart("Relative difference of the minimum WSS on each ring");
     std::vector<std::vector<std::string>> table;
+    std::vector<std::string> beyond, within, unknown;
     for (size_t r = 0; r < result.rings.size(); ++r) {
       const post::Ring& ref_ring = reference.rings[r];
-      const double ref_min = ref_ring.samples[ref_ring.minimum].magnitude;
+      const double ref_min = ref_ring.samples[ref_ring.minimum].magnitude, ref_mean = ring_mean(ref_ring);
+      const GridConvergence& g = ring_min_gci[r];
       BarSeries s{"ring " + result.rings[r].name, {}};
       for (const MeshRun& m : meshes) {
         if (&m == &reference) continue;
         const post::RingSample& least = m.rings[r].samples[m.rings[r].minimum];
         const double d = relative_difference(least.magnitude, ref_min);
+        const double d_mean = ref_mean > 0.0 ? 100.0 * (least.magnitude - ref_min) / ref_mean : NAN;
+        const double d_ext = have_gci && g.found ? relative_difference(least.magnitude, g.extrapolated) : NAN;
+        double turn = std::fmod(least.angle - ref_ring.samples[ref_ring.minimum].angle + 540.0, 360.0) - 180.0;
+        const double shift = ref_ring.closed ? turn / 360.0 * ref_ring.length
+                                             : least.arc_length - ref_ring.samples[ref_ring.minimum].arc_length;
+        const std::string verdict = have_gci ? against_band(least.magnitude - ref_min, g) : "unknown";
+        if (!m.series)
+          (verdict == "larger" ? beyond : verdict == "unknown" ? unknown : within)
+              .push_back(fmt::format("{} on {}", m.name, result.rings[r].name));
         s.values.push_back(d);
-        table.push_back({result.rings[r].name, m.name, number(least.magnitude), number(ref_min),
-                         number(least.angle, 4), percent(d)});
+        table.push_back({result.rings[r].name, m.name, number(least.magnitude), number(ref_min), number(least.angle, 4),
+                         number(shift, 3), percent(d), percent(d_mean), percent(d_ext),
+                         have_gci ? uncertainty(g) : "n/a", verdict});
         numbers.push_back({{"what", "ring minimum"}, {"ring", result.rings[r].name}, {"mesh", m.name},
                            {"wss_Pa", least.magnitude}, {"reference_Pa", ref_min}, {"angle_deg", least.angle},
-                           {"relative_difference_percent", d}});
+                           {"position_error", shift},
+                           {"relative_difference_percent", d},
+                           {"difference_of_ring_mean_percent", std::isfinite(d_mean) ? Json(d_mean) : Json(nullptr)},
+                           {"relative_to_extrapolated_percent", std::isfinite(d_ext) ? Json(d_ext) : Json(nullptr)},
+                           {"reference_uncertainty", verdict}});
       }
       chart.series.push_back(s);
     }
     doc.figure("ring_minimum_differences", svg(chart),
                "Relative difference of each ring's minimum WSS from the reference's, per mesh");
-    doc.table({"ring", "mesh", "minimum WSS (Pa)", "reference (Pa)", "at angle (deg)", "difference"}, table);
+    doc.table({"ring", "mesh", "minimum WSS (Pa)", "reference (Pa)", "at angle (deg)",
+               fmt::format("position error ({})", unit), "difference", "of the ring's mean", "against extrapolated",
+               "reference GCI", "beyond the reference's uncertainty"},
+              table);
+    const auto listed = [](const std::vector<std::string>& v) {
+      return v.empty() ? std::string("none") : fmt::format("{} ({})", v.size(), fmt::join(v, ", "));
+    };
+    if (have_gci)
+      doc.paragraph(fmt::format(
+          "The compared meshes' ring minima that differ from the reference by more than the reference's own "
+          "uncertainty (its GCI band): {}. Within it, so that the reference cannot tell them from itself: {}. Not known "
+          "(no order of convergence, and the difference larger than the series' own spread): {}. The position error "
+          "is the arc length from the reference's minimum to the mesh's; \"of the ring's mean\" is the difference over "
+          "the reference ring's mean WSS, which stays meaningful where the minimum is near zero.",
+          listed(beyond), listed(within), listed(unknown)));
   }
   if (!config.points.empty()) {
     doc.heading("WSS at the points against the reference");
@@ -179,19 +312,27 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
     std::vector<std::vector<std::string>> table;
     for (size_t p = 0; p < config.points.size(); ++p) {
       const double ref = reference.points[p].value.norm();
+      const GridConvergence& g = point_gci[p];
       BarSeries s{"point " + config.points[p].name, {}};
       for (const MeshRun& m : meshes) {
         if (&m == &reference) continue;
         const double v = m.points[p].value.norm(), d = relative_difference(v, ref);
+        const double d_ext = have_gci && g.found ? relative_difference(v, g.extrapolated) : NAN;
+        const std::string verdict = have_gci ? against_band(v - ref, g) : "unknown";
         s.values.push_back(d);
-        table.push_back({config.points[p].name, m.name, number(v), number(ref), percent(d)});
+        table.push_back({config.points[p].name, m.name, number(v), number(ref), percent(d), percent(d_ext),
+                         have_gci ? uncertainty(g) : "n/a", verdict});
         numbers.push_back({{"what", "point"}, {"point", config.points[p].name}, {"mesh", m.name}, {"wss_Pa", v},
-                           {"reference_Pa", ref}, {"relative_difference_percent", d}});
+                           {"reference_Pa", ref}, {"relative_difference_percent", d},
+                           {"relative_to_extrapolated_percent", std::isfinite(d_ext) ? Json(d_ext) : Json(nullptr)},
+                           {"reference_uncertainty", verdict}});
       }
       chart.series.push_back(s);
     }
     doc.figure("point_differences", svg(chart), "Relative difference of the WSS at each point, per mesh");
-    doc.table({"point", "mesh", "WSS (Pa)", "reference (Pa)", "difference"}, table);
+    doc.table({"point", "mesh", "WSS (Pa)", "reference (Pa)", "difference", "against extrapolated", "reference GCI",
+               "beyond the reference's uncertainty"},
+              table);
   }
 
   // Pictures: the compared surface meshes, and the WSS field on them and on the reference.
@@ -283,6 +424,7 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
   }
   j["meshes"] = list;
   j["differences"] = numbers;
+  j["grid_convergence"] = convergence;
   j["seconds"] = result.seconds;
   j["warnings"] = result.warnings;
   io::write_text(folder + "/study.json", j.dump(2) + "\n");

@@ -284,6 +284,10 @@ point = [0, 3, 0]
     EXPECT_TRUE(m.rings[1].closed) << m.name;
   }
   EXPECT_TRUE(r.warnings.empty());
+  // The compared volumes of equal node counts (equal_volume_nodes, the default): the curvature
+  // mesh's interior sized to the uniform mesh's count.
+  EXPECT_NEAR(r.meshes[1].volume_points, r.meshes[0].volume_points, 0.02 * r.meshes[0].volume_points);
+  EXPECT_DOUBLE_EQ(r.meshes[0].interior_size, 1.0);
   // Mesh against reference: the minimum on the straight parent agrees within 10 %.
   const auto least = [&](int m, int ring) {
     return r.meshes[m].rings[ring].samples[r.meshes[m].rings[ring].minimum].magnitude;
@@ -305,6 +309,9 @@ point = [0, 3, 0]
   EXPECT_NE(html.find("<svg"), std::string::npos);  // pictures inline
   const nlohmann::json j = nlohmann::json::parse(io::read_file(tmp.path("out/study.json")));
   EXPECT_EQ(j["differences"].size(), 2u * 2u + 2u);  // 2 rings x 2 meshes, 1 point x 2 meshes
+  // Two uniform meshes only (the compared one and level 1): no grid convergence, said.
+  EXPECT_NE(md.find("Not estimated: it needs three uniform meshes"), std::string::npos);
+  EXPECT_TRUE(j["grid_convergence"].empty());
 
   // Again: every mesh reused, the same numbers.
   const StudyResult again = run_study(config, tmp.path("out"));
