@@ -274,4 +274,31 @@ std::vector<PointProbe> probe_points(const TriMesh& wall, const std::vector<Vec3
   return probes;
 }
 
+std::vector<double> resampled_magnitude(const Ring& ring, int count) {
+  std::vector<double> at(ring.samples.size()), value(ring.samples.size());
+  for (size_t k = 0; k < ring.samples.size(); ++k) {
+    at[k] = ring.closed ? ring.samples[k].angle : ring.samples[k].arc_length / std::max(ring.length, 1e-300);
+    value[k] = ring.samples[k].magnitude;
+  }
+  std::vector<size_t> order(at.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return at[a] < at[b]; });
+  const double period = ring.closed ? 360.0 : 1.0;
+  std::vector<double> out(count, NAN);
+  if (order.empty()) return out;
+  for (int i = 0; i < count; ++i) {
+    const double x = period * i / count;
+    // The first sample at or after x (wrapping on a closed ring).
+    const auto it = std::lower_bound(order.begin(), order.end(), x, [&](size_t k, double v) { return at[k] < v; });
+    size_t hi = it == order.end() ? order.front() : *it;
+    size_t lo = it == order.begin() ? order.back() : *(it - 1);
+    double x_lo = at[lo], x_hi = at[hi];
+    if (it == order.begin()) x_lo -= ring.closed ? period : 0.0;
+    if (it == order.end()) x_hi += ring.closed ? period : 0.0;
+    const double w = x_hi > x_lo ? std::clamp((x - x_lo) / (x_hi - x_lo), 0.0, 1.0) : 0.0;
+    out[i] = (1.0 - w) * value[lo] + w * value[hi];
+  }
+  return out;
+}
+
 }  // namespace vesselmesh::post

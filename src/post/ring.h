@@ -56,6 +56,11 @@ RingSpec centerline_ring(const centerline::Centerlines& centerlines, const std::
 // misses the wall.
 Ring cut_ring(const TriMesh& wall, const std::vector<Vec3>& values, const RingSpec& spec);
 
+// The ring's magnitude at `count` evenly spaced positions, to compare rings of different meshes
+// point by point: at angles 360 k / count degrees on a closed ring (periodic), at the fractions
+// k / count of its length on an open one (closed = false); linear between samples.
+std::vector<double> resampled_magnitude(const Ring& ring, int count);
+
 // A ring as a user asks for it: a plane, or (on_centerline) a point whose plane is normal to
 // the centerline nearest it.
 struct RingRequest {

@@ -12,6 +12,10 @@ namespace vesselmesh::study {
 
 double GridConvergence::band() const { return std::abs(phi1) * gci_fine; }
 
+namespace {
+constexpr double kLeastOrder = 0.5, kMostOrder = 2.0;
+}
+
 GridConvergence grid_convergence(double n1, double n2, double n3, double phi1, double phi2, double phi3,
                                  int dimension) {
   if (!(n1 > n2 && n2 > n3 && n3 > 0.0))
@@ -54,13 +58,14 @@ GridConvergence grid_convergence(double n1, double n2, double n3, double phi1, d
     }
     p = next;
   }
-  if (!settled || !(p > 0.0)) {
-    g.status = "no convergence";
+  if (!settled || !(p >= kLeastOrder)) {
+    g.status = settled && p > 0.0 ? fmt::format("no convergence (order {:.2g})", p) : "no convergence";
     return g;
   }
   g.found = true;
   g.status = g.oscillatory ? "oscillatory" : "monotone";
   g.order = p;
+  p = std::min(p, kMostOrder);
   const double r21p = std::pow(g.r21, p), r32p = std::pow(g.r32, p);
   g.extrapolated = (r21p * phi1 - phi2) / (r21p - 1.0);
   g.extrapolated_error = g.extrapolated != 0.0 ? std::abs((g.extrapolated - phi1) / g.extrapolated) : nan;

@@ -9,8 +9,11 @@
 //   e_a = |(phi1 - phi2)/phi1|, e_ext = |(phi_ext - phi1)/phi_ext|, GCI_fine = 1.25 e_a/(r21^p - 1);
 //   in the asymptotic range GCI32 / (r21^p GCI21) is near 1 (GCI32 = 1.25 |e32/phi2| / (r32^p - 1)).
 // s < 0 is oscillatory convergence (the order still computed with s, as the paper does); an
-// order that is not found (the iteration does not settle, or p <= 0: the differences grow with
-// refinement) leaves the extrapolation and the GCI undefined (NaN), said in `status`.
+// order that is not found (the iteration does not settle, or p < 0.5: r21^p - 1 near zero would
+// make the GCI explode where two differences are nearly equal) leaves the extrapolation and the
+// GCI undefined (NaN), said in `status`. An observed order above 2 (the P1 velocity's formal
+// order; WSS, its gradient, has 1) is reported but taken as 2 for the extrapolation and the GCI,
+// so that a lucky triplet does not claim a tiny uncertainty (Roache's advice to limit p).
 #pragma once
 
 #include <string>

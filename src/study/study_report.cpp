@@ -224,11 +224,10 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
                              {"status", g.status}});
       return g;
     };
-    const auto find_ring = [&](const MeshRun* m, size_t r) -> const post::Ring& { return m->rings[r]; };
     for (size_t r = 0; r < result.rings.size(); ++r) {
       std::array<double, 3> least{}, mean{};
       for (int k = 0; k < 3; ++k) {
-        const post::Ring& ring = find_ring(grids[k], r);
+        const post::Ring& ring = grids[k]->rings[r];
         least[k] = ring.samples[ring.minimum].magnitude;
         mean[k] = ring_mean(ring);
       }
@@ -243,6 +242,69 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
     doc.table({"quantity (Pa)", grids[2]->name, grids[1]->name, grids[0]->name + " (reference)", "order p",
                "extrapolated", "GCI_fine (or the series' spread)", "asymptotic ratio", "convergence"},
               rows);
+
+    // Pointwise along each ring: the three profiles on a common angle (or length fraction).
+    constexpr int kProfile = 360;
+    std::vector<std::vector<std::string>> profile_rows;
+    for (size_t r = 0; r < result.rings.size(); ++r) {
+      std::array<std::vector<double>, 3> profile;
+      bool closed = true;
+      for (int k = 0; k < 3; ++k) {
+        profile[k] = post::resampled_magnitude(grids[k]->rings[r], kProfile);
+        closed = closed && grids[k]->rings[r].closed;
+      }
+      if (!closed)  // one open: all by length fraction
+        for (int k = 0; k < 3; ++k) {
+          post::Ring open = grids[k]->rings[r];
+          open.closed = false;
+          profile[k] = post::resampled_magnitude(open, kProfile);
+        }
+      LineChart chart;
+      chart.title = fmt::format("Ring {}: the reference and its uncertainty (t = {:g} s)", result.rings[r].name,
+                                result.time);
+      chart.x_label = closed ? "angle (deg)" : "fraction of the ring's length";
+      chart.y_label = "wall shear stress magnitude (Pa)";
+      chart.y_from_zero = true;
+      Series ref{grids[0]->name + " (reference)", {}, {}, false}, low{"- GCI", {}, {}, true},
+          high{"+ GCI", {}, {}, true}, ext{"extrapolated", {}, {}, true};
+      std::vector<double> gcis;
+      int found = 0;
+      for (int i = 0; i < kProfile; ++i) {
+        const double x = closed ? 360.0 * i / kProfile : static_cast<double>(i) / kProfile;
+        const GridConvergence g = grid_convergence(grids[0]->volume_points, grids[1]->volume_points,
+                                                   grids[2]->volume_points, profile[0][i], profile[1][i],
+                                                   profile[2][i]);
+        for (Series* sr : {&ref, &low, &high, &ext}) sr->x.push_back(x);
+        ref.y.push_back(profile[0][i]);
+        low.y.push_back(g.found ? profile[0][i] - g.band() : NAN);
+        high.y.push_back(g.found ? profile[0][i] + g.band() : NAN);
+        ext.y.push_back(g.found ? g.extrapolated : NAN);
+        if (g.found) {
+          ++found;
+          gcis.push_back(100 * g.gci_fine);
+        }
+      }
+      chart.series = {ref, low, high, ext};
+      doc.figure(fmt::format("ring_{}_uncertainty", result.rings[r].name), svg(chart),
+                 fmt::format("WSS along ring {} on the reference with its GCI band and the extrapolated profile, where "
+                             "the series converges (gaps where it does not)",
+                             result.rings[r].name));
+      std::sort(gcis.begin(), gcis.end());
+      const auto quantile = [&](double q) {
+        return gcis.empty() ? NAN : gcis[static_cast<size_t>(q * static_cast<double>(gcis.size() - 1))];
+      };
+      profile_rows.push_back({result.rings[r].name, fmt::format("{:.0f} %", 100.0 * found / kProfile),
+                              number(quantile(0.5), 3) + " %", number(quantile(0.9), 3) + " %"});
+      convergence.push_back({{"quantity", fmt::format("ring {}: profile", result.rings[r].name)},
+                             {"positions", kProfile},
+                             {"converging_share", static_cast<double>(found) / kProfile},
+                             {"gci_fine_percent_median", std::isfinite(quantile(0.5)) ? Json(quantile(0.5)) : Json(nullptr)},
+                             {"gci_fine_percent_90th", std::isfinite(quantile(0.9)) ? Json(quantile(0.9)) : Json(nullptr)}});
+    }
+    if (!profile_rows.empty())
+      doc.table({"ring profile", "positions where the series converges", "GCI_fine, median there",
+                 "GCI_fine, 90th percentile there"},
+                profile_rows);
   } else {
     doc.heading("The reference's uncertainty (grid convergence)");
     doc.paragraph("Not estimated: it needs three uniform meshes, the finest being the reference (the compared uniform "

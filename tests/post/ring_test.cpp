@@ -76,6 +76,31 @@ TEST(Ring, CutsAPipeIntoItsCircleWithTheFieldAlongIt) {
   EXPECT_NEAR(least.magnitude, std::hypot(0.5, 0.2), 2e-3);
 }
 
+// Rings of two meshes compared point by point: the magnitude at even angles follows the field's,
+// |tau| = sqrt((1 + 0.5 cos theta)^2 + 0.04), on a coarse and a fine pipe alike; an open ring by
+// the fraction of its length.
+TEST(Ring, ResampledAtEvenAnglesAlikeOnTwoMeshes) {
+  const Pipe fine = pipe();
+  Pipe coarse;
+  coarse.wall = synth::cylinder({.radius = 2.0, .length = 10.0, .resolution = 0.3, .jitter = 0.2});
+  for (const Vec3& x : coarse.wall.points) coarse.tau.push_back(field(x));
+  const RingSpec spec = plane("mid", Vec3(0, 0, 5.03), Vec3(0, 0, 1));
+  const std::vector<double> a = resampled_magnitude(cut_ring(fine.wall, fine.tau, spec), 72);
+  const std::vector<double> b = resampled_magnitude(cut_ring(coarse.wall, coarse.tau, spec), 72);
+  ASSERT_EQ(a.size(), 72u);
+  ASSERT_EQ(b.size(), 72u);
+  for (int k = 0; k < 72; ++k) {
+    const double theta = 2 * kPi * k / 72, exact = std::hypot(1.0 + 0.5 * std::cos(theta), 0.2);
+    EXPECT_NEAR(a[k], exact, 0.02) << k;
+    EXPECT_NEAR(b[k], exact, 0.06) << k;
+  }
+  Ring open = cut_ring(fine.wall, fine.tau, spec);
+  open.closed = false;
+  const std::vector<double> by_length = resampled_magnitude(open, 4);
+  EXPECT_NEAR(by_length[0], open.samples.front().magnitude, 1e-12);
+  EXPECT_NEAR(by_length[2], std::hypot(0.5, 0.2), 0.02);  // half way round: theta = 180 degrees
+}
+
 TEST(Ring, ReversedNormalTurnsTheOtherWay) {
   const Pipe p = pipe();
   const Ring ring = cut_ring(p.wall, p.tau, plane("r", Vec3(0, 0, 4), Vec3(0, 0, -1)));

@@ -60,6 +60,15 @@ TEST(GridConvergence, OscillationDivergenceAndAgreementAreSaid) {
   const GridConvergence agree = grid_convergence(8000, 1000, 125, 1.0, 1.0, 1.2);
   EXPECT_FALSE(agree.found);
   EXPECT_EQ(agree.status, "the two finest agree");
+  // An order under 0.5 (differences nearly equal) is not claimed; one above 2 is capped at 2.
+  const GridConvergence slow = grid_convergence(8000, 1000, 125, 1.0, 1.1, 1.2 + 1e-3);
+  EXPECT_FALSE(slow.found);
+  EXPECT_NE(slow.status.find("no convergence (order"), std::string::npos) << slow.status;
+  const GridConvergence fast = grid_convergence(8000, 1000, 125, 1.0, 1.001, 1.101);  // p = log2(100)
+  ASSERT_TRUE(fast.found);
+  EXPECT_NEAR(fast.order, std::log2(100.0), 1e-9);
+  EXPECT_NEAR(fast.gci_fine, 1.25 * 0.001 / (4.0 - 1.0), 1e-12);  // with p = 2
+  EXPECT_NEAR(fast.extrapolated, (4.0 * 1.0 - 1.001) / 3.0, 1e-12);
   EXPECT_THROW(grid_convergence(1000, 8000, 125, 1, 1, 1), InputError);
   EXPECT_THROW(grid_convergence(1000, 1000, 125, 1, 1, 1), InputError);
 }
