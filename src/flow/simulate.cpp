@@ -19,6 +19,7 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <map>
 #include <optional>
 
 namespace vesselmesh::flow {
@@ -71,6 +72,52 @@ std::string pvd(const std::vector<std::pair<double, std::string>>& files, const 
 }
 
 }  // namespace
+
+std::map<std::string, std::string> end_logs(const std::string& log, const std::vector<std::string>& tags) {
+  constexpr double kPaPerMmHg = 133.322387415;
+  std::vector<std::string> lines;
+  for (size_t at = 0; at < log.size();) {
+    const size_t end = log.find('\n', at);
+    lines.push_back(log.substr(at, end == std::string::npos ? std::string::npos : end - at));
+    at = end == std::string::npos ? log.size() : end + 1;
+  }
+  const auto split = [](const std::string& line) {
+    std::vector<std::string> cells;
+    for (size_t at = 0;;) {
+      const size_t comma = line.find(',', at);
+      cells.push_back(line.substr(at, comma == std::string::npos ? std::string::npos : comma - at));
+      if (comma == std::string::npos) return cells;
+      at = comma + 1;
+    }
+  };
+  std::map<std::string, std::string> out;
+  if (lines.empty()) return out;
+  const std::vector<std::string> header = split(lines[0]);
+  const auto column = [&](const std::string& name) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    return it == header.end() ? -1 : static_cast<int>(it - header.begin());
+  };
+  for (const std::string& tag : tags) {
+    const int flux = column(tag + "_flux_m3_s"), pressure = column(tag + "_mean_pressure_Pa"),
+              capacitor = column(tag + "_capacitor_pressure_Pa");
+    if (flux < 0 || pressure < 0)
+      throw InternalError(fmt::format("log.csv has no flux or pressure column for the end {}", tag));
+    std::string text = "step,time_s,flux_m3_s,flux_mL_s,mean_pressure_Pa,mean_pressure_mmHg";
+    if (capacitor >= 0) text += ",capacitor_pressure_Pa,capacitor_pressure_mmHg";
+    text += "\n";
+    for (size_t k = 1; k < lines.size(); ++k) {
+      if (lines[k].empty()) continue;
+      const std::vector<std::string> cells = split(lines[k]);
+      const auto value = [&](int c) { return std::stod(cells.at(static_cast<size_t>(c))); };
+      text += fmt::format("{},{},{},{:.9g},{},{:.9g}", cells.at(0), cells.at(1), cells.at(flux), value(flux) * 1e6,
+                          cells.at(pressure), value(pressure) / kPaPerMmHg);
+      if (capacitor >= 0) text += fmt::format(",{},{:.9g}", cells.at(capacitor), value(capacitor) / kPaPerMmHg);
+      text += "\n";
+    }
+    out[tag] = std::move(text);
+  }
+  return out;
+}
 
 SimulationSummary simulate(const FlowCase& input_case, const std::string& output_dir,
                            const std::string& extra_petsc_options, const Reporter& all_reporter, bool restart) {
@@ -140,9 +187,21 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   std::vector<std::pair<double, std::string>> fluid_files, wall_files;
 
   std::string log = "step,time_s";
-  for (const BoundaryCondition& b : fc.boundaries)
+  for (const BoundaryCondition& b : fc.boundaries) {
     log += fmt::format(",{0}_flux_m3_s,{0}_mean_pressure_Pa", b.tag);
+    if (b.type == BoundaryType::rcr) log += fmt::format(",{}_capacitor_pressure_Pa", b.tag);
+  }
   log += ",linear_iterations,max_cfl,assembly_seconds,solve_seconds,seconds\n";
+  std::vector<std::string> end_tags;
+  for (const BoundaryCondition& b : fc.boundaries)
+    if (b.type != BoundaryType::wall) end_tags.push_back(b.tag);
+  // log.csv and, from it, ends/TAG.csv (the writing process only).
+  const auto write_logs = [&]() {
+    if (!writer) return;
+    io::write_text(output_dir + "/log.csv", log);
+    std::filesystem::create_directories(output_dir + "/ends");
+    for (const auto& [tag, text] : end_logs(log, end_tags)) io::write_text(output_dir + "/ends/" + tag + ".csv", text);
+  };
 
   const auto write_summary = [&]() {
     if (!writer) return;
@@ -230,12 +289,16 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     summary.saved += 1;
     io::write_text(output_dir + "/fluid.pvd", pvd(fluid_files, units));
     io::write_text(output_dir + "/wall.pvd", pvd(wall_files, units));
-    io::write_text(output_dir + "/log.csv", log);
+    write_logs();
   };
 
   const auto log_step = [&](const StepReport& r) {
     log += fmt::format("{},{:.9g}", r.step, r.time);
-    for (const BoundaryFlow& f : ns.boundary_flows()) log += fmt::format(",{:.9g},{:.9g}", f.flux, f.mean_pressure);
+    const std::vector<BoundaryFlow> flows = ns.boundary_flows();
+    for (size_t k = 0; k < flows.size(); ++k) {
+      log += fmt::format(",{:.9g},{:.9g}", flows[k].flux, flows[k].mean_pressure);
+      if (fc.boundaries[k].type == BoundaryType::rcr) log += fmt::format(",{:.9g}", flows[k].capacitor_pressure);
+    }
     log += fmt::format(",{},{:.4g},{:.4g},{:.4g},{:.4g}\n", r.linear_iterations, r.max_cfl, r.assembly_seconds,
                        r.solve_seconds, r.seconds);
   };
@@ -279,7 +342,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     if (writer) {  // the folder as it was at the checkpoint (later saves are written again)
       io::write_text(output_dir + "/fluid.pvd", pvd(fluid_files, units));
       io::write_text(output_dir + "/wall.pvd", pvd(wall_files, units));
-      io::write_text(output_dir + "/log.csv", log);
+      write_logs();
     }
     reporter.info(fmt::format("restart from {}: step {}, t = {:g} s", checkpoint_path, c.flow.steps, c.flow.time));
   }
@@ -336,7 +399,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
           write_checkpoint_now();
         if (stop) {
           summary.signal = stop_signal != 0 ? static_cast<int>(stop_signal) : SIGTERM;
-          if (writer) io::write_text(output_dir + "/log.csv", log);
+          write_logs();
           finish("stopped");
           reporter.warning(fmt::format("stopped by signal {} after step {} (t = {:g} s); the checkpoint {} holds it: "
                                        "'vesselmesh simulate {} -o {} --restart' goes on",
@@ -349,7 +412,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   } catch (const ComputationError&) {
     summary.status = "diverged";
     summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    if (writer) io::write_text(output_dir + "/log.csv", log);
+    write_logs();
     write_summary();
     throw;
   }

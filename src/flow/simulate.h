@@ -10,6 +10,9 @@
 //                                  from every time step (post/indices.h)
 //   log.csv                        per step: time, flux (m3/s, out of the domain) and mean
 //                                  pressure (Pa) per boundary, linear iterations, CFL, seconds
+//   ends/TAG.csv                   per step and end (every boundary but the wall): flux (m3/s and
+//                                  mL/s, out of the domain), mean pressure (Pa and mmHg), and an rcr
+//                                  end's capacitor pressure; made from log.csv (end_logs)
 //   summary.json                   sizes, steps, times, the SI scale applied, units, status, how the
 //                                  points are shared among the processes (partition: owned unknowns,
 //                                  ghost points, neighbours per process) and each one's peak memory
@@ -29,7 +32,9 @@
 #include "flow/navier_stokes.h"
 #include "mesh/reporter.h"
 
+#include <map>
 #include <string>
+#include <vector>
 
 namespace vesselmesh::flow {
 
@@ -55,5 +60,10 @@ struct SimulationSummary {
 SimulationSummary simulate(const FlowCase& flow_case, const std::string& output_dir,
                            const std::string& extra_petsc_options = "", const Reporter& reporter = silent_reporter(),
                            bool restart = false);
+
+// Per end tag, its CSV (ends/TAG.csv) from the run's log.csv text: step, time_s, flux_m3_s,
+// flux_mL_s, mean_pressure_Pa, mean_pressure_mmHg, and for an rcr end capacitor_pressure_Pa and
+// _mmHg. InternalError when the log lacks a tag's columns.
+std::map<std::string, std::string> end_logs(const std::string& log, const std::vector<std::string>& tags);
 
 }  // namespace vesselmesh::flow

@@ -12,6 +12,8 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+
+#include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -216,6 +218,29 @@ TEST(Simulate, ARestartGoesOnAsIfTheRunHadNotStopped) {
   const std::string la = io::read_file(folder.path("whole/log.csv")), lb = io::read_file(folder.path("parts/log.csv"));
   EXPECT_EQ(std::count(la.begin(), la.end(), '\n'), std::count(lb.begin(), lb.end(), '\n'));
   EXPECT_EQ(io::read_file(folder.path("whole/fluid.pvd")), io::read_file(folder.path("parts/fluid.pvd")));
+  // A CSV per end (not the wall), the restart's too: every step, flux in m3/s and mL/s, pressures
+  // in Pa and mmHg, the rcr end's capacitor; its last row the run's end.
+  EXPECT_FALSE(std::filesystem::exists(folder.path("parts/ends/wall.csv")));
+  EXPECT_TRUE(std::filesystem::exists(folder.path("parts/ends/inlet.csv")));
+  const std::string outlet = io::read_file(folder.path("parts/ends/outlet_1.csv"));
+  EXPECT_EQ(outlet.substr(0, outlet.find('\n')),
+            "step,time_s,flux_m3_s,flux_mL_s,mean_pressure_Pa,mean_pressure_mmHg,capacitor_pressure_Pa,"
+            "capacitor_pressure_mmHg");
+  EXPECT_EQ(std::count(outlet.begin(), outlet.end(), '\n'), 13);  // the header and 12 steps
+  const std::string last = outlet.substr(outlet.rfind('\n', outlet.size() - 2) + 1);
+  double step = 0, time = 0, flux = 0, flux_ml = 0, p = 0, p_mmhg = 0, pc = 0, pc_mmhg = 0;
+  ASSERT_EQ(std::sscanf(last.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &step, &time, &flux, &flux_ml, &p, &p_mmhg,
+                        &pc, &pc_mmhg),
+            8)
+      << last;
+  EXPECT_EQ(step, 12);
+  EXPECT_NEAR(time, 0.024, 1e-12);
+  EXPECT_NEAR(flux, b.ends[1].flux, 1e-8 * std::abs(b.ends[1].flux));
+  EXPECT_NEAR(flux_ml, 1e6 * flux, 1e-8 * std::abs(flux_ml));
+  EXPECT_NEAR(p_mmhg, p / 133.322387415, 1e-8 * std::abs(p_mmhg));
+  EXPECT_NEAR(pc, b.ends[1].capacitor_pressure, 1e-8 * pc);
+  EXPECT_NEAR(pc_mmhg, pc / 133.322387415, 1e-8 * pc_mmhg);
+  EXPECT_THROW(end_logs("step,time_s\n1,0.1\n", {"outlet"}), InternalError);
 
   // Another mesh or time step: refused, naming the checkpoint.
   FlowCase other_dt = read_case(pipe_case(folder, 14));
