@@ -125,10 +125,11 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
   c.steady_iterations = r.integer(time["steady_iterations"], "time.steady_iterations", c.steady_iterations, 1);
   c.picard = r.integer(time["picard"], "time.picard", 0, 0);
   const std::string method = r.text(time["steady_method"], "time.steady_method", "picard");
-  if (method != "picard" && method != "pseudo-transient")
+  if (method != "picard" && method != "pseudo-transient" && method != "newton")
     r.fail("time.steady_method",
-           fmt::format("\"{}\" is not a steady method: give \"picard\" or \"pseudo-transient\"", method));
+           fmt::format("\"{}\" is not a steady method: give \"picard\", \"pseudo-transient\" or \"newton\"", method));
   c.pseudo_transient = method == "pseudo-transient";
+  c.newton = method == "newton";
   const std::string initial = r.text(time["initial"], "time.initial", "rest");
   if (initial != "rest" && initial != "stokes")
     r.fail("time.initial", fmt::format("\"{}\" is not an initial state: give \"rest\" or \"stokes\"", initial));

@@ -142,8 +142,10 @@ struct NavierStokes::Impl {
   void build(const TetMesh& mesh);
   void build_boundaries(const TetMesh& ordered);
   void set_dirichlet(double time);
+  // `newton`: the Galerkin convection's full Jacobian at `advect` (its (du . grad) u part and the
+  // right-hand side that goes with it), for Newton's steady iterations; else its Picard (Oseen) form.
   void assemble(const std::vector<Vec3>& advect, const std::vector<Vec3>& history, double mass_coefficient,
-                double dt);
+                double dt, bool newton = false);
   void solve_system(StepReport& report, const std::string& where);
   double cfl(const std::vector<Vec3>& advect, double dt) const;
   // Every boundary's flux (m3/s) of `velocity`, summed over the processes (every process calls it).
@@ -586,7 +588,7 @@ void NavierStokes::Impl::publish() {
 
 // mass_coefficient: alpha_0 / dt (0 for a steady solve); history: the BDF history over dt.
 void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::vector<Vec3>& history,
-                                  double mass_coefficient, double dt) {
+                                  double mass_coefficient, double dt, bool newton) {
   make_solver();
   values = solver->begin_assembly();  // the matrix's own values, zeroed
   rhs.assign(pattern.rows, 0.0);
@@ -632,6 +634,20 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
       for (int b = 0; b < 4; ++b) mh += V / 20.0 * (a == b ? 2.0 : 1.0) * history[t4[b]];
       for (int i = 0; i < 3; ++i) F[4 * a + i] = mh[i] + tau_m * c[a] * V * hbar[i];
       F[4 * a + 3] = tau_m * V * g[a].dot(hbar);
+    }
+    if (newton) {
+      // The element's convection is V/4 (ubar . grad) u in each row, ubar the mean of its corners'
+      // velocities: its derivative in u_b beyond the Picard part is V/16 grad u (every a, b), and
+      // Newton's right-hand side gains that part applied to the current flow, V/4 (grad u) ubar.
+      Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();  // grad(i, j) = d u_i / d x_j
+      for (int a = 0; a < 4; ++a) grad += advect[t4[a]] * g[a].transpose();
+      const Vec3 extra = V / 4.0 * (grad * ubar);
+      for (int a = 0; a < 4; ++a) {
+        for (int b = 0; b < 4; ++b)
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) K[4 * a + i][4 * b + j] += V / 16.0 * grad(i, j);
+        for (int i = 0; i < 3; ++i) F[4 * a + i] += extra[i];
+      }
     }
 
     // Scatter, moving known Dirichlet values to the right-hand side.
@@ -799,7 +815,7 @@ StepReport NavierStokes::solve_steady() {
   // Pseudo time steps (pseudo_transient): the step length, 0 for a Picard iteration; the first
   // iteration is the Stokes solve either way.
   double pseudo_dt = 0.0, last_rate = 0.0, resume_dt = 0.0;
-  bool settled = false;
+  bool settled = false, use_newton = false;
   for (int iteration = 0; iteration < s.fc.steady_iterations; ++iteration) {
     s.update_resistance(0.0);
     const double used_dt = pseudo_dt;
@@ -807,10 +823,12 @@ StepReport NavierStokes::solve_steady() {
     std::vector<Vec3> history = none;
     if (pseudo_dt > 0.0)
       for (int a = 0; a < s.n(); ++a) history[a] = s.u[a] / pseudo_dt;
-    s.assemble(advect, history, pseudo_dt > 0.0 ? 1.0 / pseudo_dt : 0.0, pseudo_dt);
+    const bool newton_now = use_newton;
+    s.assemble(advect, history, pseudo_dt > 0.0 ? 1.0 / pseudo_dt : 0.0, pseudo_dt, newton_now);
     report.assembly_seconds += seconds_since(assembly);
-    const std::string what = pseudo_dt > 0.0 ? "pseudo time step" : "Picard iteration";
+    const std::string what = pseudo_dt > 0.0 ? "pseudo time step" : newton_now ? "Newton iteration" : "Picard iteration";
     s.solve_system(report, fmt::format("steady {} {}", what, iteration + 1));
+    const double last_change = report.change;
     report.change = s.take_solution(s.u, s.p);
     s.publish();
     report.step = iteration + 1;
@@ -820,6 +838,12 @@ StepReport NavierStokes::solve_steady() {
                                  pseudo_dt > 0.0 ? fmt::format(", CFL {:.3g}", s.cfl(advect, pseudo_dt)) : "",
                                  report.change, report.linear_iterations));
     advect = s.u;
+    if (s.fc.newton && iteration > 0) {
+      // Newton's iterations once Picard's have brought the change under kNewtonFrom; back to
+      // Picard's (for as many as it takes) when a Newton iteration's change grows.
+      if (newton_now && report.change > last_change) use_newton = false;
+      else if (!newton_now && report.change < kNewtonFrom) use_newton = true;
+    }
     const bool small = report.change < s.fc.steady_tolerance;
     if (!s.fc.pseudo_transient) {
       if (iteration > 0 && small) {

@@ -92,8 +92,12 @@ class NavierStokes {
   // (switched evolution relaxation); once a step changes the flow by less than the tolerance,
   // a Picard iteration (no time term) confirms it. The steady answer is the same; the pseudo
   // steps damp the iteration (not a flow that is itself unsteady).
+  // With the case's newton: Picard iterations from Stokes until the change is under
+  // kNewtonFrom, then Newton's (the Galerkin convection's full Jacobian; the stabilization's
+  // Picard form, so an inexact Newton), back to Picard's while a Newton iteration's change grows.
   StepReport solve_steady();
   static constexpr double kPseudoCflStart = 5.0;
+  static constexpr double kNewtonFrom = 1e-2;
   // An unsteady run's start from the Stokes flow of the conditions at the current time (one
   // linear solve, no advection): the developed flow a pipe would take seconds of time steps to
   // reach. The next step() is the first (BDF1).

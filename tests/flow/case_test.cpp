@@ -91,7 +91,11 @@ TEST(FlowCase, SteadyMethodByName) {
   EXPECT_FALSE(parse_case(text, "case.toml").pseudo_transient);
   text.replace(text.find("steady = false"), 14, "steady = true\nsteady_method = \"pseudo-transient\"");
   EXPECT_TRUE(parse_case(text, "case.toml").pseudo_transient);
+  EXPECT_FALSE(parse_case(text, "case.toml").newton);
   text.replace(text.find("pseudo-transient"), 16, "newton");
+  EXPECT_TRUE(parse_case(text, "case.toml").newton);
+  EXPECT_FALSE(parse_case(text, "case.toml").pseudo_transient);
+  text.replace(text.find("newton"), 6, "secant");
   expect_error(text, "time.steady_method");
 }
 
