@@ -56,6 +56,10 @@ SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::ve
   return petsc_calls().solve_assembled(*impl_->inside, rhs, x);
 }
 
+SolveStats LinearSolver::solve_assembled_direct(const std::vector<double>& rhs, std::vector<double>& x) {
+  return petsc_calls().solve_assembled_direct(*impl_->inside, rhs, x);
+}
+
 void LinearSolver::reuse_preconditioner(bool on) { petsc_calls().reuse_preconditioner(*impl_->inside, on); }
 void LinearSolver::rebuild_preconditioner() { petsc_calls().rebuild_preconditioner(*impl_->inside); }
 std::string LinearSolver::description() const { return petsc_calls().description(*impl_->inside); }

@@ -157,6 +157,7 @@ struct LinearSolver::Impl {
   Mat matrix = nullptr;
   Vec rhs = nullptr, solution = nullptr;
   KSP ksp = nullptr;
+  KSP direct = nullptr;  // solve_assembled_direct's, made when first needed
   IS velocity = nullptr, pressure = nullptr;
   bool distributed = false;
   int nonzeros = 0;
@@ -172,12 +173,30 @@ struct LinearSolver::Impl {
   int built_iterations = -1;  // iterations of the last solve that built the preconditioner; -1: build next
   int last_iterations = 0;
 
+  // The solution's own rows into x, and under MPI its ghost rows from the processes owning them.
+  void copy_out(std::vector<double>& x) {
+    Impl& s = *this;
+    const int n = s.pattern.rows;
+    const PetscScalar* r = nullptr;
+    check(VecGetArrayRead(s.solution, &r), "VecGetArrayRead");
+    std::memcpy(x.data(), r, static_cast<size_t>(n) * sizeof(double));
+    check(VecRestoreArrayRead(s.solution, &r), "VecRestoreArrayRead");
+    if (s.distributed) {  // the ghosts' values from the processes that own them
+      check(VecScatterBegin(s.ghosts, s.solution, s.ghost_values, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+      check(VecScatterEnd(s.ghosts, s.solution, s.ghost_values, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+      check(VecGetArrayRead(s.ghost_values, &r), "VecGetArrayRead");
+      std::memcpy(x.data() + n, r, s.pattern.ghost_rows.size() * sizeof(double));
+      check(VecRestoreArrayRead(s.ghost_values, &r), "VecRestoreArrayRead");
+    }
+  }
+
   ~Impl() {
     if (ghosts) VecScatterDestroy(&ghosts);
     if (ghost_values) VecDestroy(&ghost_values);
     if (velocity) ISDestroy(&velocity);
     if (pressure) ISDestroy(&pressure);
     if (ksp) KSPDestroy(&ksp);
+    if (direct) KSPDestroy(&direct);
     if (rhs) VecDestroy(&rhs);
     if (solution) VecDestroy(&solution);
     if (matrix) MatDestroy(&matrix);
@@ -343,19 +362,55 @@ void LinearSolver::end_assembly() {
   s.assembling = MatrixValues{};
 }
 
+namespace {
+
+// `rhs` and the initial guess (x's own rows) into PETSc's vectors.
+void copy_in(Vec rhs_vec, Vec solution, const std::vector<double>& rhs, const std::vector<double>& x, int n) {
+  PetscScalar* v = nullptr;
+  check(VecGetArray(rhs_vec, &v), "VecGetArray");
+  std::memcpy(v, rhs.data(), rhs.size() * sizeof(double));
+  check(VecRestoreArray(rhs_vec, &v), "VecRestoreArray");
+  check(VecGetArray(solution, &v), "VecGetArray");
+  std::memcpy(v, x.data(), static_cast<size_t>(n) * sizeof(double));
+  check(VecRestoreArray(solution, &v), "VecRestoreArray");
+}
+
+}  // namespace
+
+SolveStats LinearSolver::solve_assembled_direct(const std::vector<double>& rhs, std::vector<double>& x) {
+  Impl& s = *impl_;
+  const int n = s.pattern.rows;
+  VM_CHECK(!s.assembling.own, "solve_assembled_direct before end_assembly");
+  VM_CHECK(static_cast<int>(rhs.size()) == n && x.size() == n + s.pattern.ghost_rows.size(), "vector sizes");
+  copy_in(s.rhs, s.solution, rhs, x, n);
+  if (!s.direct) {  // kept: the next solves reuse its symbolic factorization (the same pattern)
+    check(KSPCreate(s.distributed ? PETSC_COMM_WORLD : PETSC_COMM_SELF, &s.direct), "KSPCreate");
+    PC pc = nullptr;
+    check(KSPSetType(s.direct, KSPPREONLY), "KSPSetType");
+    check(KSPGetPC(s.direct, &pc), "KSPGetPC");
+    check(PCSetType(pc, PCLU), "PCSetType");
+    check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+  }
+  check(KSPSetOperators(s.direct, s.matrix, s.matrix), "KSPSetOperators");
+  check(KSPSolve(s.direct, s.rhs, s.solution), "KSPSolve (MUMPS)");
+  KSPConvergedReason reason = KSP_DIVERGED_PC_FAILED;
+  check(KSPGetConvergedReason(s.direct, &reason), "KSPGetConvergedReason");
+  s.copy_out(x);
+  SolveStats stats;
+  stats.iterations = 1;
+  stats.converged = reason > 0;
+  stats.reason = KSPConvergedReasons[reason];
+  s.built_iterations = -1;  // the iterative solver's preconditioner is built anew next time
+  return stats;
+}
+
 SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::vector<double>& x) {
   Impl& s = *impl_;
   const int n = s.pattern.rows;
   VM_CHECK(!s.assembling.own, "solve_assembled before end_assembly");
   VM_CHECK(static_cast<int>(rhs.size()) == n && x.size() == n + s.pattern.ghost_rows.size(), "vector sizes");
-
+  copy_in(s.rhs, s.solution, rhs, x, n);
   PetscScalar* v = nullptr;
-  check(VecGetArray(s.rhs, &v), "VecGetArray");
-  std::memcpy(v, rhs.data(), rhs.size() * sizeof(double));
-  check(VecRestoreArray(s.rhs, &v), "VecRestoreArray");
-  check(VecGetArray(s.solution, &v), "VecGetArray");
-  std::memcpy(v, x.data(), static_cast<size_t>(n) * sizeof(double));
-  check(VecRestoreArray(s.solution, &v), "VecRestoreArray");
 
   // Reuse the preconditioner while the solve before did not take much more than the one
   // that built it; cap the reusing solve at twice that, and repeat it with a new preconditioner
@@ -387,17 +442,7 @@ SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::ve
     }
   }
 
-  const PetscScalar* r = nullptr;
-  check(VecGetArrayRead(s.solution, &r), "VecGetArrayRead");
-  std::memcpy(x.data(), r, static_cast<size_t>(n) * sizeof(double));
-  check(VecRestoreArrayRead(s.solution, &r), "VecRestoreArrayRead");
-  if (s.distributed) {  // the ghosts' values from the processes that own them
-    check(VecScatterBegin(s.ghosts, s.solution, s.ghost_values, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-    check(VecScatterEnd(s.ghosts, s.solution, s.ghost_values, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-    check(VecGetArrayRead(s.ghost_values, &r), "VecGetArrayRead");
-    std::memcpy(x.data() + n, r, s.pattern.ghost_rows.size() * sizeof(double));
-    check(VecRestoreArrayRead(s.ghost_values, &r), "VecRestoreArrayRead");
-  }
+  s.copy_out(x);
 
   SolveStats stats;
   PetscInt iterations = 0;

@@ -137,6 +137,11 @@ class LinearSolver {
   MatrixValues begin_assembly();
   void end_assembly();
   SolveStats solve_assembled(const std::vector<double>& rhs, std::vector<double>& x);
+  // The same system by a direct solve (MUMPS's LU, in parallel under MPI; its factorization kept
+  // for the next such solve, whose symbolic part it reuses): the fallback for a steady system the
+  // iterative solver did not converge on. Its memory grows faster than the unknowns (fill-in):
+  // for systems up to a few hundred thousand.
+  SolveStats solve_assembled_direct(const std::vector<double>& rhs, std::vector<double>& x);
 
   // Keep the preconditioner from one solve to the next while it still serves (a time step's
   // matrix changes little from the step before, and building ILU or AMG costs more than the few

@@ -146,7 +146,10 @@ struct NavierStokes::Impl {
   // right-hand side that goes with it), for Newton's steady iterations; else its Picard (Oseen) form.
   void assemble(const std::vector<Vec3>& advect, const std::vector<Vec3>& history, double mass_coefficient,
                 double dt, bool newton = false);
-  void solve_system(StepReport& report, const std::string& where);
+  // `direct_fallback`: when the iterative solver does not converge and the system has at most
+  // NavierStokes::kDirectFallbackUnknowns unknowns, solve it directly (MUMPS), said (steady solves).
+  void solve_system(StepReport& report, const std::string& where, bool direct_fallback = false);
+  bool direct_now = false;  // a steady solve went to the direct solver: its next iterations too
   double cfl(const std::vector<Vec3>& advect, double dt) const;
   // Every boundary's flux (m3/s) of `velocity`, summed over the processes (every process calls it).
   std::vector<double> fluxes(const std::vector<Vec3>& velocity) const;
@@ -722,14 +725,36 @@ void NavierStokes::Impl::make_solver() {
   solver->reuse_preconditioner(!fc.steady && fc.reuse_preconditioner);
 }
 
-void NavierStokes::Impl::solve_system(StepReport& report, const std::string& where) {
+void NavierStokes::Impl::solve_system(StepReport& report, const std::string& where, bool direct_fallback) {
   x.assign(kBlock * n(), 0.0);
   for (int a = 0; a < n(); ++a) {
     for (int i = 0; i < 3; ++i) x[kBlock * a + i] = u[a][i];
     x[kBlock * a + 3] = p[a];
   }
   const auto start = Clock::now();
-  const SolveStats stats = solver->solve_assembled(rhs, x);
+  // Once a steady solve has needed the direct solver, the next ones go to it at once (the
+  // iterative one would spend its 1000 iterations again).
+  SolveStats stats;
+  if (direct_fallback && direct_now) {
+    stats = solver->solve_assembled_direct(rhs, x);
+  } else {
+    stats = solver->solve_assembled(rhs, x);
+  }
+  if (!stats.converged && direct_fallback && !direct_now &&
+      pattern.global_rows <= NavierStokes::kDirectFallbackUnknowns) {
+    reporter->warning(fmt::format("{}: the iterative solver did not converge ({} after {} iterations): solved directly "
+                                  "(MUMPS's LU) instead, and so the steady iterations after it; the steady "
+                                  "preconditioner is weak where convection dominates",
+                                  where, stats.reason, stats.iterations));
+    direct_now = true;
+    const int iterative = stats.iterations;
+    for (int a = 0; a < n(); ++a) {  // from the same initial guess
+      for (int i = 0; i < 3; ++i) x[kBlock * a + i] = u[a][i];
+      x[kBlock * a + 3] = p[a];
+    }
+    stats = solver->solve_assembled_direct(rhs, x);
+    stats.iterations += iterative;
+  }
   report.solve_seconds += seconds_since(start);
   report.linear_iterations += stats.iterations;
   report.solves += 1;
@@ -816,6 +841,7 @@ StepReport NavierStokes::solve_steady() {
   // iteration is the Stokes solve either way.
   double pseudo_dt = 0.0, last_rate = 0.0, resume_dt = 0.0;
   bool settled = false, use_newton = false;
+  s.direct_now = false;
   for (int iteration = 0; iteration < s.fc.steady_iterations; ++iteration) {
     s.update_resistance(0.0);
     const double used_dt = pseudo_dt;
@@ -827,7 +853,7 @@ StepReport NavierStokes::solve_steady() {
     s.assemble(advect, history, pseudo_dt > 0.0 ? 1.0 / pseudo_dt : 0.0, pseudo_dt, newton_now);
     report.assembly_seconds += seconds_since(assembly);
     const std::string what = pseudo_dt > 0.0 ? "pseudo time step" : newton_now ? "Newton iteration" : "Picard iteration";
-    s.solve_system(report, fmt::format("steady {} {}", what, iteration + 1));
+    s.solve_system(report, fmt::format("steady {} {}", what, iteration + 1), /*direct_fallback=*/true);
     const double last_change = report.change;
     report.change = s.take_solution(s.u, s.p);
     s.publish();

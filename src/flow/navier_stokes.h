@@ -98,6 +98,10 @@ class NavierStokes {
   StepReport solve_steady();
   static constexpr double kPseudoCflStart = 5.0;
   static constexpr double kNewtonFrom = 1e-2;
+  // A steady iteration's linear system the iterative solver does not converge on is solved
+  // directly (MUMPS) up to this many unknowns (its memory grows faster than they do), said in a
+  // warning; larger ones are a ComputationError as before.
+  static constexpr int kDirectFallbackUnknowns = 300000;
   // An unsteady run's start from the Stokes flow of the conditions at the current time (one
   // linear solve, no advection): the developed flow a pipe would take seconds of time steps to
   // reach. The next step() is the first (BDF1).

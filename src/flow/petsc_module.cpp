@@ -24,6 +24,9 @@ extern "C" __attribute__((visibility("default"))) const vesselmesh::flow::PetscC
       [](LinearSolver& solver, const std::vector<double>& rhs, std::vector<double>& x) {
         return solver.solve_assembled(rhs, x);
       },
+      [](LinearSolver& solver, const std::vector<double>& rhs, std::vector<double>& x) {
+        return solver.solve_assembled_direct(rhs, x);
+      },
       [](LinearSolver& solver, bool on) { solver.reuse_preconditioner(on); },
       [](LinearSolver& solver) { solver.rebuild_preconditioner(); },
       [](const LinearSolver& solver) { return solver.description(); },

@@ -13,7 +13,7 @@ inline constexpr const char* kPetscModuleFile = "libvesselmesh-petsc.so";
 
 // The module's entry points: a LinearSolver made, used and destroyed inside the module; `layout`
 // first, as in io/gmsh_module.h (raise it when this table or a type it passes changes).
-inline constexpr int kPetscCallsLayout = 6;
+inline constexpr int kPetscCallsLayout = 7;
 struct PetscCalls {
   int layout;
   int (*process_count)();
@@ -33,6 +33,7 @@ struct PetscCalls {
   MatrixValues (*begin_assembly)(LinearSolver& solver);
   void (*end_assembly)(LinearSolver& solver);
   SolveStats (*solve_assembled)(LinearSolver& solver, const std::vector<double>& rhs, std::vector<double>& x);
+  SolveStats (*solve_assembled_direct)(LinearSolver& solver, const std::vector<double>& rhs, std::vector<double>& x);
   void (*reuse_preconditioner)(LinearSolver& solver, bool on);
   void (*rebuild_preconditioner)(LinearSolver& solver);
   std::string (*description)(const LinearSolver& solver);
