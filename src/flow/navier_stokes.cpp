@@ -726,20 +726,19 @@ void NavierStokes::Impl::make_solver() {
 }
 
 void NavierStokes::Impl::solve_system(StepReport& report, const std::string& where, bool direct_fallback) {
-  x.assign(kBlock * n(), 0.0);
-  for (int a = 0; a < n(); ++a) {
-    for (int i = 0; i < 3; ++i) x[kBlock * a + i] = u[a][i];
-    x[kBlock * a + 3] = p[a];
-  }
+  const auto initial_guess = [&] {  // the current flow
+    x.assign(kBlock * n(), 0.0);
+    for (int a = 0; a < n(); ++a) {
+      for (int i = 0; i < 3; ++i) x[kBlock * a + i] = u[a][i];
+      x[kBlock * a + 3] = p[a];
+    }
+  };
+  initial_guess();
   const auto start = Clock::now();
   // Once a steady solve has needed the direct solver, the next ones go to it at once (the
   // iterative one would spend its 1000 iterations again).
-  SolveStats stats;
-  if (direct_fallback && direct_now) {
-    stats = solver->solve_assembled_direct(rhs, x);
-  } else {
-    stats = solver->solve_assembled(rhs, x);
-  }
+  SolveStats stats =
+      direct_fallback && direct_now ? solver->solve_assembled_direct(rhs, x) : solver->solve_assembled(rhs, x);
   if (!stats.converged && direct_fallback && !direct_now &&
       pattern.global_rows <= NavierStokes::kDirectFallbackUnknowns) {
     reporter->warning(fmt::format("{}: the iterative solver did not converge ({} after {} iterations): solved directly "
@@ -748,10 +747,7 @@ void NavierStokes::Impl::solve_system(StepReport& report, const std::string& whe
                                   where, stats.reason, stats.iterations));
     direct_now = true;
     const int iterative = stats.iterations;
-    for (int a = 0; a < n(); ++a) {  // from the same initial guess
-      for (int i = 0; i < 3; ++i) x[kBlock * a + i] = u[a][i];
-      x[kBlock * a + 3] = p[a];
-    }
+    initial_guess();
     stats = solver->solve_assembled_direct(rhs, x);
     stats.iterations += iterative;
   }

@@ -192,15 +192,23 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     if (b.type == BoundaryType::rcr) log += fmt::format(",{}_capacitor_pressure_Pa", b.tag);
   }
   log += ",linear_iterations,max_cfl,assembly_seconds,solve_seconds,seconds\n";
+  const std::string log_header = log;
   std::vector<std::string> end_tags;
   for (const BoundaryCondition& b : fc.boundaries)
     if (b.type != BoundaryType::wall) end_tags.push_back(b.tag);
-  // log.csv and, from it, ends/TAG.csv (the writing process only).
+  // ends/TAG.csv's texts, grown a row a step from log.csv's (end_logs of its header and the new
+  // line: one formatting for both), made whole from the log at a restart.
+  std::map<std::string, std::string> end_texts = end_logs(log_header, end_tags);
+  const auto log_line = [&](const std::string& line) {
+    log += line;
+    for (const auto& [tag, text] : end_logs(log_header + line, end_tags)) end_texts[tag] += text.substr(text.find('\n') + 1);
+  };
+  // log.csv and ends/TAG.csv (the writing process only).
   const auto write_logs = [&]() {
     if (!writer) return;
     io::write_text(output_dir + "/log.csv", log);
     std::filesystem::create_directories(output_dir + "/ends");
-    for (const auto& [tag, text] : end_logs(log, end_tags)) io::write_text(output_dir + "/ends/" + tag + ".csv", text);
+    for (const auto& [tag, text] : end_texts) io::write_text(output_dir + "/ends/" + tag + ".csv", text);
   };
 
   const auto write_summary = [&]() {
@@ -293,14 +301,15 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   };
 
   const auto log_step = [&](const StepReport& r) {
-    log += fmt::format("{},{:.9g}", r.step, r.time);
+    std::string line = fmt::format("{},{:.9g}", r.step, r.time);
     const std::vector<BoundaryFlow> flows = ns.boundary_flows();
     for (size_t k = 0; k < flows.size(); ++k) {
-      log += fmt::format(",{:.9g},{:.9g}", flows[k].flux, flows[k].mean_pressure);
-      if (fc.boundaries[k].type == BoundaryType::rcr) log += fmt::format(",{:.9g}", flows[k].capacitor_pressure);
+      line += fmt::format(",{:.9g},{:.9g}", flows[k].flux, flows[k].mean_pressure);
+      if (fc.boundaries[k].type == BoundaryType::rcr) line += fmt::format(",{:.9g}", flows[k].capacitor_pressure);
     }
-    log += fmt::format(",{},{:.4g},{:.4g},{:.4g},{:.4g}\n", r.linear_iterations, r.max_cfl, r.assembly_seconds,
-                       r.solve_seconds, r.seconds);
+    line += fmt::format(",{},{:.4g},{:.4g},{:.4g},{:.4g}\n", r.linear_iterations, r.max_cfl, r.assembly_seconds,
+                        r.solve_seconds, r.seconds);
+    log_line(line);
   };
 
   // Checkpoints: the state to go on from, in the mesh's numbering.
@@ -336,6 +345,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     summary.saved = c.saved;
     summary.linear_iterations = c.linear_iterations;
     log = c.log;
+    end_texts = end_logs(log, end_tags);
     fluid_files = c.fluid_files;
     wall_files = c.wall_files;
     indices.restore(c.indices);

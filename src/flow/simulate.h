@@ -12,7 +12,7 @@
 //                                  pressure (Pa) per boundary, linear iterations, CFL, seconds
 //   ends/TAG.csv                   per step and end (every boundary but the wall): flux (m3/s and
 //                                  mL/s, out of the domain), mean pressure (Pa and mmHg), and an rcr
-//                                  end's capacitor pressure; made from log.csv (end_logs)
+//                                  end's capacitor pressure; formatted by end_logs from log.csv's rows
 //   summary.json                   sizes, steps, times, the SI scale applied, units, status, how the
 //                                  points are shared among the processes (partition: owned unknowns,
 //                                  ghost points, neighbours per process) and each one's peak memory
