@@ -4,6 +4,8 @@
 #include "flow/petsc_module.h"
 #include "modules.h"
 
+#include <cstdlib>
+
 namespace vesselmesh::flow {
 namespace {
 
@@ -29,8 +31,15 @@ std::vector<double> sum_all(std::vector<double> values) { return petsc_calls().s
 std::vector<double> gather_to_first(const std::vector<double>& values) {
   return petsc_calls().gather_to_first(values);
 }
-std::vector<int> partition_graph(const std::vector<int>& start, const std::vector<int>& neighbours, int total) {
-  return petsc_calls().partition_graph(start, neighbours, total);
+std::vector<int> partition_graph(const std::vector<int>& start, const std::vector<int>& neighbours, int parts) {
+  return petsc_calls().partition_graph(start, neighbours, parts);
+}
+std::string scatter_from_first(const std::function<std::string(int rank)>& make) {
+  return petsc_calls().scatter_from_first(make);
+}
+void abort_all(int code) {
+  petsc_calls().abort_all(code);
+  std::abort();  // not reached
 }
 
 LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::string& defaults,

@@ -5,10 +5,50 @@
 #include "flow/case.h"
 #include "flow/linear_solver.h"
 #include "flow/simulate.h"
+#include "mesh/error.h"
 
 #include <fmt/format.h>
 
 namespace vesselmesh::cli {
+namespace {
+
+struct Options {
+  std::string case_file, output, petsc_options, mesh;
+  bool restart = false;
+  CommonOptions common;
+};
+
+// One process's run (under mpirun every process runs it; the first speaks).
+int run(const Options& options, bool first) {
+  TerminalReporter reporter(options.common.quiet || !first);
+  flow::FlowCase fc = flow::read_case(options.case_file);
+  if (!options.mesh.empty()) fc.mesh = options.mesh;
+  const flow::SimulationSummary s = flow::simulate(fc, options.output, options.petsc_options, reporter, options.restart);
+  if (s.status == "stopped") return 128 + s.signal;
+  if (!first) return 0;
+  reporter.info(fmt::format("{} {} steps, {} dofs, {} linear iterations, {:.3g} s per step, {:.1f} s in all; "
+                            "results in {}",
+                            s.status, s.steps, s.dofs, s.linear_iterations, s.seconds_per_step, s.seconds,
+                            options.output));
+  if (options.common.json)
+    print_json(Json{{"status", s.status},
+                    {"points", s.points},
+                    {"tetrahedra", s.tetrahedra},
+                    {"dofs", s.dofs},
+                    {"ranks", s.ranks},
+                    {"steps", s.steps},
+                    {"saved", s.saved},
+                    {"linear_iterations", s.linear_iterations},
+                    {"seconds", round_to(s.seconds, 4)},
+                    {"seconds_per_step", round_to(s.seconds_per_step, 4)},
+                    {"length_scale_m", s.length_scale},
+                    {"solver", s.solver},
+                    {"peak_memory_mb", s.peak_memory_mb},
+                    {"output", options.output}});
+  return 0;
+}
+
+}  // namespace
 
 Command add_simulate_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand(
@@ -20,12 +60,8 @@ Command add_simulate_command(CLI::App& parent) {
       "DIR/summary.json. The mesh's unit is scaled to SI (the scale is logged and written). An unsteady run "
       "writes DIR/checkpoint.bin every [output] checkpoint_every steps (default save_every), at its end and when "
       "SIGTERM or SIGINT stops it (after the step under way; exit code 128 + the signal); --restart goes on from "
-      "it. Under 'mpirun -np K' the rows are shared among the K processes");
-  struct Options {
-    std::string case_file, output, petsc_options, mesh;
-    bool restart = false;
-    CommonOptions common;
-  };
+      "it. Under 'mpirun -np K' the first process reads the mesh and sends each its part (PT-Scotch); each solves "
+      "its rows and writes its pieces of the results (DIR/pieces/, joined by .pvtu / .pvtp files in the .pvd)");
   auto o = std::make_shared<Options>();
   app->add_option("CASE", o->case_file, "Case file (.toml)")->required()->check(CLI::ExistingFile);
   app->add_option("-o,--output", o->output, "Output folder (created if absent)")->required();
@@ -41,32 +77,27 @@ Command add_simulate_command(CLI::App& parent) {
   add_common_options(*app, o->common);
   return {app, [o] {
             const bool first = flow::process_rank() == 0;  // under mpirun, the first process speaks
-            TerminalReporter reporter(o->common.quiet || !first);
-            flow::FlowCase fc = flow::read_case(o->case_file);
-            if (!o->mesh.empty()) fc.mesh = o->mesh;
-            const flow::SimulationSummary s = flow::simulate(fc, o->output, o->petsc_options, reporter, o->restart);
-            if (s.status == "stopped") return 128 + s.signal;
-            if (!first) return 0;
-            reporter.info(fmt::format("{} {} steps, {} dofs, {} linear iterations, {:.3g} s per step, {:.1f} s in all; "
-                                      "results in {}",
-                                      s.status, s.steps, s.dofs, s.linear_iterations, s.seconds_per_step, s.seconds,
-                                      o->output));
-            if (o->common.json)
-              print_json(Json{{"status", s.status},
-                              {"points", s.points},
-                              {"tetrahedra", s.tetrahedra},
-                              {"dofs", s.dofs},
-                              {"ranks", s.ranks},
-                              {"steps", s.steps},
-                              {"saved", s.saved},
-                              {"linear_iterations", s.linear_iterations},
-                              {"seconds", round_to(s.seconds, 4)},
-                              {"seconds_per_step", round_to(s.seconds_per_step, 4)},
-                              {"length_scale_m", s.length_scale},
-                              {"solver", s.solver},
-                              {"peak_memory_mb", s.peak_memory_mb},
-                              {"output", o->output}});
-            return 0;
+            if (flow::process_count() == 1) return run(*o, first);
+            // Under mpirun an input, option or computation error is raised on every process alike
+            // (the mesh's, from the first): the first tells it, the others end quietly with its code.
+            // Any other failure may be on one process while the others wait on it: it is told with
+            // the process's rank and every process ends at once.
+            try {
+              return run(*o, first);
+            } catch (const InputError&) {
+              if (first) throw;
+              return 2;
+            } catch (const OptionError&) {
+              if (first) throw;
+              return 2;
+            } catch (const ComputationError&) {
+              if (first) throw;
+              return 1;
+            } catch (const std::exception& e) {
+              fmt::print(stderr, "vesselmesh simulate: internal error on process {} of {}: {}\n", flow::process_rank(),
+                         flow::process_count(), e.what());
+              flow::abort_all(1);
+            }
           }};
 }
 

@@ -1,6 +1,7 @@
 #include "flow/checkpoint.h"
 
 #include "io/atomic_file.h"
+#include "io/bytes.h"
 #include "mesh/error.h"
 
 #include <fmt/format.h>
@@ -12,7 +13,7 @@ namespace vesselmesh::flow {
 namespace {
 
 constexpr char kMagic[] = "vesselmesh checkpoint\n";
-constexpr uint32_t kVersion = 2;  // 2: the rcr ends' capacitor pressures
+constexpr uint32_t kVersion = 3;  // 2: the rcr ends' capacitor pressures; 3: the indices' mesh points
 
 // FNV-1a over bytes.
 struct Hash {
@@ -29,68 +30,6 @@ struct Hash {
   }
 };
 
-class Writer {
- public:
-  void bytes(const void* data, size_t n) { text_.append(static_cast<const char*>(data), n); }
-  template <typename T>
-  void value(const T& v) {
-    bytes(&v, sizeof v);
-  }
-  template <typename T>
-  void vector(const std::vector<T>& v) {
-    value<uint64_t>(v.size());
-    if (!v.empty()) bytes(v.data(), v.size() * sizeof(T));
-  }
-  void string(const std::string& s) {
-    value<uint64_t>(s.size());
-    bytes(s.data(), s.size());
-  }
-  const std::string& text() const { return text_; }
-
- private:
-  std::string text_;
-};
-
-class Reader {
- public:
-  Reader(std::string text, std::string path) : text_(std::move(text)), path_(std::move(path)) {}
-  void bytes(void* data, size_t n) {
-    if (n == 0) return;
-    if (n > text_.size() - at_)
-      throw InputError(fmt::format("{}: the checkpoint is cut short (at byte {} of {}): it was not written whole; "
-                                   "run the case again without --restart",
-                                   path_, at_, text_.size()));
-    std::memcpy(data, text_.data() + at_, n);
-    at_ += n;
-  }
-  template <typename T>
-  T value() {
-    T v;
-    bytes(&v, sizeof v);
-    return v;
-  }
-  template <typename T>
-  std::vector<T> vector() {
-    const uint64_t n = value<uint64_t>();
-    if (n > (text_.size() - at_) / sizeof(T)) bytes(nullptr, text_.size() - at_ + 1);  // too long: cut short
-    std::vector<T> v(n);
-    if (n) bytes(v.data(), n * sizeof(T));
-    return v;
-  }
-  std::string string() {
-    const uint64_t n = value<uint64_t>();
-    if (n > text_.size() - at_) bytes(nullptr, text_.size() - at_ + 1);
-    std::string s(n, '\0');
-    if (n) bytes(s.data(), n);
-    return s;
-  }
-  bool done() const { return at_ == text_.size(); }
-
- private:
-  std::string text_, path_;
-  size_t at_ = 0;
-};
-
 }  // namespace
 
 uint64_t run_fingerprint(const TetMesh& mesh, double dt) {
@@ -105,7 +44,7 @@ uint64_t run_fingerprint(const TetMesh& mesh, double dt) {
 }
 
 void write_checkpoint(const std::string& path, const Checkpoint& c) {
-  Writer w;
+  io::ByteWriter w;
   w.bytes(kMagic, sizeof kMagic - 1);
   w.value(kVersion);
   w.value(c.fingerprint);
@@ -133,6 +72,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   w.vector(s.integral);
   w.vector(s.magnitude_integral);
   w.vector(s.change);
+  w.vector(c.index_points);
   io::write_atomically(path, [&](const std::string& temporary) {
     std::ofstream out(temporary, std::ios::binary);
     out.write(w.text().data(), static_cast<std::streamsize>(w.text().size()));
@@ -141,7 +81,11 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
-  Reader r(io::read_file(path), path);
+  io::ByteReader r(io::read_file(path), [&](size_t at, size_t size) {
+    throw InputError(fmt::format("{}: the checkpoint is cut short (at byte {} of {}): it was not written whole; "
+                                 "run the case again without --restart",
+                                 path, at, size));
+  });
   char magic[sizeof kMagic - 1];
   r.bytes(magic, sizeof magic);
   if (std::memcmp(magic, kMagic, sizeof magic) != 0)
@@ -176,6 +120,9 @@ Checkpoint read_checkpoint(const std::string& path) {
   s.integral = r.vector<Vec3>();
   s.magnitude_integral = r.vector<double>();
   s.change = r.vector<double>();
+  c.index_points = r.vector<int>();
+  if (c.index_points.size() != s.last.size())
+    throw InputError(fmt::format("{}: the checkpoint's indices do not fit their points: not one of ours", path));
   if (!r.done()) throw InputError(fmt::format("{}: the checkpoint has bytes past its end: not one of ours", path));
   return c;
 }

@@ -22,7 +22,10 @@ struct Checkpoint {
   int saved = 0, linear_iterations = 0;
   std::string log;  // log.csv so far
   std::vector<std::pair<double, std::string>> fluid_files, wall_files;  // the PVD collections so far
+  // The hemodynamic indices' running sums per wall point, and per entry that point's number in
+  // the mesh (sorted), whatever process computed it.
   post::WssIndexAccumulator::State indices;
+  std::vector<int> index_points;
 };
 
 // The run a checkpoint belongs to: its mesh's points, cells and boundary, and the time step.

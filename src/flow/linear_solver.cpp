@@ -8,6 +8,7 @@
 #include <scotch.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <type_traits>
@@ -107,48 +108,76 @@ std::vector<double> gather_to_first(const std::vector<double>& values) {
   return all;
 }
 
-std::vector<int> partition_graph(const std::vector<int>& start, const std::vector<int>& neighbours, int total) {
+std::vector<int> partition_graph(const std::vector<int>& start, const std::vector<int>& neighbours, int parts) {
   ensure_petsc();
-  const int ranks = process_count();
-  std::vector<int> parts(total, 0);
-  if (ranks == 1) return parts;
-  if (process_rank() == 0) {
-    // PT-Scotch on this one process (the graph is whole here; MatPartitioning takes it spread over
-    // the processes as well). Debian's Scotch seeds from the clock and runs threads that race
-    // (the same graph cut apart differently from run to run): one thread, a fixed seed.
-    VM_CHECK(static_cast<int>(start.size()) == total + 1, "the whole graph on the first process");
-    setenv("SCOTCH_PTHREAD_NUMBER", "1", 1);
-    SCOTCH_randomSeed(1);
-    SCOTCH_randomReset();
-    // The adjacency without its diagonal, in arrays PETSc frees with the matrix.
-    PetscInt *ia = nullptr, *ja = nullptr;
-    check(PetscMalloc1(total + 1, &ia), "PetscMalloc1");
-    check(PetscMalloc1(std::max<size_t>(neighbours.size(), 1), &ja), "PetscMalloc1");
-    ia[0] = 0;
-    for (int r = 0; r < total; ++r) {
-      ia[r + 1] = ia[r];
-      for (int k = start[r]; k < start[r + 1]; ++k)
-        if (neighbours[k] != r) ja[ia[r + 1]++] = neighbours[k];
-    }
-    Mat adjacency = nullptr;
-    check(MatCreateMPIAdj(PETSC_COMM_SELF, total, total, ia, ja, nullptr, &adjacency), "MatCreateMPIAdj");
-    MatPartitioning partitioning = nullptr;
-    IS owners = nullptr;
-    check(MatPartitioningCreate(PETSC_COMM_SELF, &partitioning), "MatPartitioningCreate");
-    check(MatPartitioningSetAdjacency(partitioning, adjacency), "MatPartitioningSetAdjacency");
-    check(MatPartitioningSetType(partitioning, MATPARTITIONINGPTSCOTCH), "MatPartitioningSetType (PT-Scotch)");
-    check(MatPartitioningSetNParts(partitioning, ranks), "MatPartitioningSetNParts");
-    check(MatPartitioningApply(partitioning, &owners), "MatPartitioningApply (PT-Scotch)");
-    const PetscInt* owner = nullptr;
-    check(ISGetIndices(owners, &owner), "ISGetIndices");
-    std::copy(owner, owner + total, parts.begin());
-    check(ISRestoreIndices(owners, &owner), "ISRestoreIndices");
-    ISDestroy(&owners);
-    MatPartitioningDestroy(&partitioning);
-    MatDestroy(&adjacency);
+  const int total = static_cast<int>(start.size()) - 1;
+  VM_CHECK(total >= 0 && parts >= 1, "a graph and a part count");
+  std::vector<int> owner_of(total, 0);
+  if (parts == 1 || total == 0) return owner_of;
+  // PT-Scotch on this one process. Debian's Scotch seeds from the clock and runs threads that race
+  // (the same graph cut apart differently from run to run): one thread, a fixed seed.
+  setenv("SCOTCH_PTHREAD_NUMBER", "1", 1);
+  SCOTCH_randomSeed(1);
+  SCOTCH_randomReset();
+  // The adjacency without its diagonal, in arrays PETSc frees with the matrix.
+  PetscInt *ia = nullptr, *ja = nullptr;
+  check(PetscMalloc1(total + 1, &ia), "PetscMalloc1");
+  check(PetscMalloc1(std::max<size_t>(neighbours.size(), 1), &ja), "PetscMalloc1");
+  ia[0] = 0;
+  for (int r = 0; r < total; ++r) {
+    ia[r + 1] = ia[r];
+    for (int k = start[r]; k < start[r + 1]; ++k)
+      if (neighbours[k] != r) ja[ia[r + 1]++] = neighbours[k];
   }
-  MPI_Bcast(parts.data(), total, MPI_INT, 0, PETSC_COMM_WORLD);
-  return parts;
+  Mat adjacency = nullptr;
+  check(MatCreateMPIAdj(PETSC_COMM_SELF, total, total, ia, ja, nullptr, &adjacency), "MatCreateMPIAdj");
+  MatPartitioning partitioning = nullptr;
+  IS owners = nullptr;
+  check(MatPartitioningCreate(PETSC_COMM_SELF, &partitioning), "MatPartitioningCreate");
+  check(MatPartitioningSetAdjacency(partitioning, adjacency), "MatPartitioningSetAdjacency");
+  check(MatPartitioningSetType(partitioning, MATPARTITIONINGPTSCOTCH), "MatPartitioningSetType (PT-Scotch)");
+  check(MatPartitioningSetNParts(partitioning, parts), "MatPartitioningSetNParts");
+  check(MatPartitioningApply(partitioning, &owners), "MatPartitioningApply (PT-Scotch)");
+  const PetscInt* owner = nullptr;
+  check(ISGetIndices(owners, &owner), "ISGetIndices");
+  std::copy(owner, owner + total, owner_of.begin());
+  check(ISRestoreIndices(owners, &owner), "ISRestoreIndices");
+  ISDestroy(&owners);
+  MatPartitioningDestroy(&partitioning);
+  MatDestroy(&adjacency);
+  return owner_of;
+}
+
+std::string scatter_from_first(const std::function<std::string(int rank)>& make) {
+  ensure_petsc();
+  const int ranks = process_count(), rank = process_rank();
+  constexpr size_t kChunk = size_t{1} << 30;  // MPI counts are ints: a part goes in pieces of 1 GiB
+  std::string mine;
+  if (rank == 0) {
+    for (int r = 1; r < ranks; ++r) {
+      const std::string bytes = make(r);
+      const uint64_t size = bytes.size();
+      MPI_Send(&size, 1, MPI_UINT64_T, r, 0, PETSC_COMM_WORLD);
+      for (size_t at = 0; at < bytes.size(); at += kChunk)
+        MPI_Send(bytes.data() + at, static_cast<int>(std::min(kChunk, bytes.size() - at)), MPI_CHAR, r, 1,
+                 PETSC_COMM_WORLD);
+    }
+    return mine;
+  }
+  uint64_t size = 0;
+  MPI_Recv(&size, 1, MPI_UINT64_T, 0, 0, PETSC_COMM_WORLD, MPI_STATUS_IGNORE);
+  mine.resize(size);
+  for (size_t at = 0; at < mine.size(); at += kChunk)
+    MPI_Recv(mine.data() + at, static_cast<int>(std::min(kChunk, mine.size() - at)), MPI_CHAR, 0, 1, PETSC_COMM_WORLD,
+             MPI_STATUS_IGNORE);
+  return mine;
+}
+
+void abort_all(int code) {
+  ensure_petsc();
+  std::fflush(stderr);
+  MPI_Abort(PETSC_COMM_WORLD, code);
+  std::abort();  // MPI_Abort does not return
 }
 
 struct LinearSolver::Impl {

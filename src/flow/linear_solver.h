@@ -9,6 +9,7 @@
 // defaults and then applies the caller's string, whose values win.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -97,13 +98,19 @@ std::vector<double> sum_all(std::vector<double> values);
 // Every process's `values` one after the other in rank order, on the first process (empty on
 // the others).
 std::vector<double> gather_to_first(const std::vector<double>& values);
-// Graph partitioning (PT-Scotch, through PETSc's MatPartitioning): the points of a graph split
-// among the processes, as many parts as processes, balanced in points (within 1 %), with few edges
-// cut. The first process gives the whole graph (rows `start`, `neighbours` by number, itself
-// possibly among them; the others give nothing) and partitions it alone, on one thread with a
-// fixed seed: the same graph on as many processes gives the same parts, run after run. Returns
-// every point's process, on every process; on one process all 0.
-std::vector<int> partition_graph(const std::vector<int>& start, const std::vector<int>& neighbours, int total);
+// Graph partitioning (PT-Scotch, through PETSc's MatPartitioning) on the calling process alone:
+// the points of a graph (rows `start`, `neighbours` by number, itself possibly among them) split
+// into `parts` parts balanced in points (within 1 %), with few edges cut; on one thread with a
+// fixed seed, so that the same graph gives the same parts, run after run. Returns every point's
+// part (all 0 for one part).
+std::vector<int> partition_graph(const std::vector<int>& start, const std::vector<int>& neighbours, int parts);
+// The first process makes each other process's bytes (`make(rank)`, rank 1, 2, ..., one at a time,
+// each sent before the next is made) and every other process returns its own; the first returns
+// none (every process calls it).
+std::string scatter_from_first(const std::function<std::string(int rank)>& make);
+// Ends every process at once (MPI_Abort) with this exit code: for a failure on one process that
+// the others, waiting on it, would not see.
+[[noreturn]] void abort_all(int code);
 
 // A process's matrix values between LinearSolver::begin_assembly() and end_assembly(), in
 // PETSc's own arrays: per row its entries in the columns this process owns (`own`) and in the

@@ -2,7 +2,6 @@
 
 #include "flow/womersley.h"
 #include "mesh/error.h"
-#include "mesh/reorder.h"
 
 #include <fmt/format.h>
 
@@ -21,10 +20,6 @@ constexpr double kCI = 36.0;  // inverse-estimate constant of linear tetrahedra
 
 using Clock = std::chrono::steady_clock;
 
-// The first of the points process `rank` of `ranks` owns (consecutive ranges of equal size).
-int range_begin(int points, int rank, int ranks) {
-  return static_cast<int>(static_cast<long long>(points) * rank / ranks);
-}
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
@@ -91,11 +86,12 @@ struct NavierStokes::Impl {
   std::vector<char> fixed;  // per local dof: Dirichlet
   std::unique_ptr<LinearSolver> solver;
 
-  // The first process's copy of the whole flow in the mesh's numbering (velocity(), pressure()),
-  // gathered after every solve.
-  std::vector<Vec3> u_mesh;
-  std::vector<double> p_mesh;  // Pa
-  void publish();
+  // Every process's copy of the whole flow in the mesh's numbering (velocity(), pressure()),
+  // gathered when first asked for after a solve (`published` false until then).
+  mutable std::vector<Vec3> u_mesh;
+  mutable std::vector<double> p_mesh;  // Pa
+  mutable bool published = false;
+  void publish() const;
   // The whole of per-point values (`width` a point, this process's own points) on the first
   // process, in the mesh's numbering.
   std::vector<double> gather_points(const std::vector<double>& mine, int width) const;
@@ -139,8 +135,8 @@ struct NavierStokes::Impl {
     return static_cast<int>(std::lower_bound(first, last, local_global[b]) - node_columns.begin());
   }
 
-  void build(const TetMesh& mesh);
-  void build_boundaries(const TetMesh& ordered);
+  void build(MeshPart part);
+  void build_boundaries(const MeshPart& part);
   void set_dirichlet(double time);
   // `newton`: the Galerkin convection's full Jacobian at `advect` (its (du . grad) u part and the
   // right-hand side that goes with it), for Newton's steady iterations; else its Picard (Oseen) form.
@@ -161,113 +157,19 @@ struct NavierStokes::Impl {
   void check_finite(const StepReport& report) const;
 };
 
-namespace {
-
-// Every tetrahedron's orientation checked on the whole mesh (every process the same: a bad cell
-// stops them all alike).
-void check_orientation(const TetMesh& mesh, const std::vector<Tet>& tets, const std::string& path) {
-  for (const Tet& t4 : tets) {
-    const double v6 = mesh::tet_volume6(mesh.points[t4[0]], mesh.points[t4[1]], mesh.points[t4[2]], mesh.points[t4[3]]);
-    if (!(v6 > 0.0))
-      throw InputError(fmt::format("{}: the tetrahedron of points {}, {}, {}, {} is inverted or flat (six times its "
-                                   "volume {:.3g} in mesh units, at ({:.4g}, {:.4g}, {:.4g})): mend the mesh first",
-                                   path, t4[0], t4[1], t4[2], t4[3], v6, mesh.points[t4[0]].x(),
-                                   mesh.points[t4[0]].y(), mesh.points[t4[0]].z()));
-  }
-}
-
-}  // namespace
-
-void NavierStokes::Impl::build(const TetMesh& mesh) {
-  total_points = mesh.num_points();
-  const int ranks = process_count(), rank = process_rank();
-
-  // The global numbering: RCM, then the points grouped by the process PT-Scotch gives them (the
-  // first process partitions the whole point graph).
-  std::vector<int> rcm, part(total_points, 0);
-  {
-    const std::vector<Tet> whole = mesh::all_tetrahedra(mesh);  // the prisms cut once, for both uses
-    if (whole.empty()) throw InputError(fmt::format("{}: the mesh has no tetrahedra", fc.mesh));
-    check_orientation(mesh, whole, fc.mesh);
-    rcm = mesh::cuthill_mckee_order(mesh);
-    if (ranks > 1) {
-      std::vector<int> start{0}, neighbours;
-      if (rank == 0) {  // the point graph in RCM numbering
-        std::vector<int> position(total_points);
-        for (int k = 0; k < total_points; ++k) position[rcm[k]] = k;
-        std::vector<std::vector<int>> rows(total_points);
-        for (const Tet& t4 : whole)
-          for (int a : t4)
-            for (int b : t4) rows[position[a]].push_back(position[b]);
-        for (auto& row : rows) {
-          std::sort(row.begin(), row.end());
-          row.erase(std::unique(row.begin(), row.end()), row.end());
-          neighbours.insert(neighbours.end(), row.begin(), row.end());
-          start.push_back(static_cast<int>(neighbours.size()));
-          std::vector<int>().swap(row);
-        }
-      }
-      part = partition_graph(start, neighbours, total_points);
-    }
-  }
-  process_begin.assign(ranks + 1, 0);
-  for (int k = 0; k < total_points; ++k) ++process_begin[part[k] + 1];
-  for (int r = 0; r < ranks; ++r) process_begin[r + 1] += process_begin[r];
-  std::vector<int> order(total_points);  // order[global] = mesh point
-  {
-    std::vector<int> next(process_begin.begin(), process_begin.end() - 1);
-    for (int k = 0; k < total_points; ++k) order[next[part[k]]++] = rcm[k];
-  }
-  std::vector<int>().swap(part);
-  node_begin = process_begin[rank];
-  const int node_end = process_begin[rank + 1];
-  owned = node_end - node_begin;
-  for (int r = 0; r < ranks; ++r)  // every process sees it alike
-    if (process_begin[r + 1] == process_begin[r])
-      throw InputError(fmt::format("{}: {} processes for a mesh of {} points: process {} would own none; run it on "
-                                   "fewer processes",
-                                   fc.mesh, ranks, total_points, r));
-
-  // This process's cells and points (in the global numbering, its tetrahedra sorted by it).
-  const TetMesh ordered = mesh::renumbered(mesh, order);
-  if (rank == 0) global_mesh_point = order;
-  const std::vector<Tet> all = mesh::all_tetrahedra(ordered);
-  std::vector<int> local(total_points, -1);
-  local_global.resize(owned);
-  for (int a = 0; a < owned; ++a) {
-    local_global[a] = node_begin + a;
-    local[node_begin + a] = a;
-  }
-  const auto mine = [&](const Tet& t4) {
-    for (int g : t4)
-      if (g >= node_begin && g < node_end) return true;
-    return false;
-  };
-  std::vector<int> ghosts;
-  for (const Tet& t4 : all)
-    if (mine(t4)) {
-      tets.push_back(t4);
-      for (int g : t4)
-        if (local[g] == -1) {
-          local[g] = -2;
-          ghosts.push_back(g);
-        }
-    }
-  std::sort(ghosts.begin(), ghosts.end());
-  for (int g : ghosts) {
-    local[g] = static_cast<int>(local_global.size());
-    local_global.push_back(g);
-  }
-  for (Tet& t4 : tets)
-    for (int& g : t4) g = local[g];
+void NavierStokes::Impl::build(MeshPart part) {
+  total_points = part.total_points;
+  process_begin = std::move(part.process_begin);
+  owned = part.owned;
+  node_begin = process_begin[process_rank()];
+  local_global = std::move(part.local_global);
+  mesh_point = std::move(part.mesh_point);
+  global_mesh_point = std::move(part.global_mesh_point);
+  tets = std::move(part.tets);
   const double s = fc.length_scale;
-  points.resize(local_global.size());
-  mesh_point.resize(local_global.size());
-  for (size_t a = 0; a < points.size(); ++a) {
-    points[a] = ordered.points[local_global[a]] * s;
-    mesh_point[a] = order[local_global[a]];
-  }
-  build_boundaries(ordered);
+  points = std::move(part.points);
+  for (Vec3& point : points) point *= s;
+  build_boundaries(part);
 
   gradients.resize(tets.size());
   volumes.resize(tets.size());
@@ -345,10 +247,9 @@ SparsePattern NavierStokes::Impl::columns_pattern() const {
   return full;
 }
 
-// `ordered`: the whole mesh in the global numbering (its boundary tells every local point's
-// boundaries, ghosts included).
-void NavierStokes::Impl::build_boundaries(const TetMesh& ordered) {
-  const std::map<int, std::string> tag_name = mesh::boundary_tag_names(ordered);
+// The part's boundary triangles (their points all local, one owned) and its local points' tags.
+void NavierStokes::Impl::build_boundaries(const MeshPart& part) {
+  const std::map<int, std::string>& tag_name = part.tag_names;
   std::vector<std::string> names;
   for (const auto& [tag, name] : tag_name) names.push_back(name);
   check_tags(fc, names);
@@ -359,22 +260,15 @@ void NavierStokes::Impl::build_boundaries(const TetMesh& ordered) {
     boundaries.emplace_back();
     boundaries.back().condition = c;
   }
-  std::vector<int> local(total_points, -1);
-  for (int a = 0; a < n(); ++a) local[local_global[a]] = a;
-  // Per boundary: its triangles with a point this process owns (all their points are local:
-  // the cell on the triangle is this process's), counted in sums by the owner of their first
-  // point (`counted`), and every local point on it.
+  // Per boundary: its triangles with a point this process owns, counted in sums by the owner of
+  // their first point (`counted`), and every local point on it.
   std::vector<std::vector<char>> on(boundaries.size(), std::vector<char>(n(), 0));
+  for (const auto& [a, tag] : part.point_tags) on[index.at(tag_name.at(tag))][a] = 1;
   std::vector<std::vector<char>> counted(boundaries.size());
   std::vector<double> sums(7 * boundaries.size(), 0.0);  // area, area-weighted centre, area vector
-  for (size_t f = 0; f < ordered.boundary.size(); ++f) {
-    const int k = index.at(tag_name.at(ordered.boundary_tags[f]));
-    const Triangle& global = ordered.boundary[f];
-    for (int g : global)
-      if (local[g] >= 0) on[k][local[g]] = 1;
-    if (!(local[global[0]] >= 0 && local[global[1]] >= 0 && local[global[2]] >= 0)) continue;
-    const Triangle tri{local[global[0]], local[global[1]], local[global[2]]};
-    if (!owns(tri[0]) && !owns(tri[1]) && !owns(tri[2])) continue;
+  for (size_t f = 0; f < part.boundary.size(); ++f) {
+    const int k = index.at(tag_name.at(part.boundary_tags[f]));
+    const Triangle& tri = part.boundary[f];
     Boundary& b = boundaries[k];
     const Vec3 area2 = (points[tri[1]] - points[tri[0]]).cross(points[tri[2]] - points[tri[0]]);
     const double area = 0.5 * area2.norm();
@@ -389,7 +283,6 @@ void NavierStokes::Impl::build_boundaries(const TetMesh& ordered) {
       sum[4 + i] += 0.5 * area2[i];
     }
   }
-  std::vector<int>().swap(local);
   sums = sum_all(std::move(sums));
   for (size_t k = 0; k < boundaries.size(); ++k) {
     Boundary& b = boundaries[k];
@@ -570,10 +463,12 @@ std::vector<double> NavierStokes::Impl::gather_points(const std::vector<double>&
   return out;
 }
 
-void NavierStokes::Impl::publish() {
+void NavierStokes::Impl::publish() const {
   // Every process's own points placed in a whole-size array, summed over the processes: the
   // whole flow on each (a caller of velocity() need not know which process it is on; 32 bytes a
-  // point, 11 MB at 1.4 M unknowns — until the post-processing is distributed too).
+  // point). The distributed post-processing does without (local_velocity()).
+  if (published) return;
+  published = true;
   std::vector<double> all(static_cast<size_t>(kBlock) * total_points, 0.0);
   for (int a = 0; a < owned; ++a) {
     double* at = &all[static_cast<size_t>(kBlock) * mesh_point[a]];
@@ -772,16 +667,19 @@ void NavierStokes::Impl::check_finite(const StepReport& report) const {
 }
 
 NavierStokes::NavierStokes(const TetMesh& mesh, const FlowCase& flow_case, const Reporter& reporter)
+    : NavierStokes(distribute_mesh(process_rank() == 0 ? &mesh : nullptr, flow_case.mesh), flow_case, reporter) {}
+
+NavierStokes::NavierStokes(MeshPart part, const FlowCase& flow_case, const Reporter& reporter)
     : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
   s.fc = flow_case;
   s.reporter = &reporter;
   s.nu = flow_case.viscosity / flow_case.density;
-  s.build(mesh);
+  s.build(std::move(part));
   s.u.assign(s.n(), Vec3::Zero());
   s.u_old = s.u;
   s.p.assign(s.n(), 0.0);
-  s.publish();
+  s.published = false;
 }
 
 NavierStokes::~NavierStokes() = default;
@@ -821,7 +719,7 @@ StepReport NavierStokes::step() {
   s.p = std::move(next_p);
   s.t = t_next;
   s.step_count += 1;
-  s.publish();
+  s.published = false;
   report.seconds = seconds_since(start);
   s.check_finite(report);
   return report;
@@ -852,7 +750,7 @@ StepReport NavierStokes::solve_steady() {
     s.solve_system(report, fmt::format("steady {} {}", what, iteration + 1), /*direct_fallback=*/true);
     const double last_change = report.change;
     report.change = s.take_solution(s.u, s.p);
-    s.publish();
+    s.published = false;
     report.step = iteration + 1;
     s.check_finite(report);
     s.reporter->info(fmt::format("steady iteration {} ({}{}): velocity change {:.3e}, {} linear iterations",
@@ -934,7 +832,7 @@ StepReport NavierStokes::start_from_stokes() {
   // preconditioner and the Stokes solve's Krylov vectors: 250 MB of the peak at 420k unknowns).
   s.solver.reset();
   report.change = s.take_solution(s.u, s.p);
-  s.publish();
+  s.published = false;
   s.u_old = s.u;
   s.step_count = 0;
   report.time = s.t;
@@ -949,7 +847,7 @@ void NavierStokes::set_state(const std::vector<Vec3>& velocity, double time) {
     throw InputError(fmt::format("initial velocity: {} values for {} points", velocity.size(), s.total_points));
   for (int k = 0; k < s.n(); ++k) s.u[k] = velocity[s.mesh_point[k]];
   s.u_old = s.u;
-  s.publish();
+  s.published = false;
   s.t = time;
   s.step_count = 0;
 }
@@ -997,14 +895,26 @@ void NavierStokes::restore(const FlowState& state) {
   }
   s.t = state.time;
   s.step_count = state.steps;
-  s.publish();
+  s.published = false;
 }
 
 double NavierStokes::time() const { return impl_->t; }
 int NavierStokes::steps() const { return impl_->step_count; }
 int NavierStokes::dofs() const { return impl_->pattern.total_rows(); }
-const std::vector<Vec3>& NavierStokes::velocity() const { return impl_->u_mesh; }
-const std::vector<double>& NavierStokes::pressure() const { return impl_->p_mesh; }
+const std::vector<Vec3>& NavierStokes::velocity() const {
+  impl_->publish();
+  return impl_->u_mesh;
+}
+const std::vector<double>& NavierStokes::pressure() const {
+  impl_->publish();
+  return impl_->p_mesh;
+}
+const std::vector<Vec3>& NavierStokes::local_velocity() const { return impl_->u; }
+std::vector<double> NavierStokes::local_pressure() const {
+  std::vector<double> pressure(impl_->p.size());
+  for (size_t a = 0; a < pressure.size(); ++a) pressure[a] = impl_->p[a] * impl_->fc.density;
+  return pressure;
+}
 
 std::vector<BoundaryFlow> NavierStokes::boundary_flows() const {
   const Impl& s = *impl_;

@@ -18,18 +18,19 @@
 // (beta/2 |min(u.n, 0)| u, Moghadam et al. 2011); `resistance` a traction -R Q n with the
 // outflow Q of the last step. Dirichlet rows carry the diagonal the element matrices gave them.
 // Without a traction or resistance boundary the pressure is fixed to 0 at one point.
-// Inside, the points are renumbered: under MPI split among the processes by PT-Scotch (balanced
-// in points, few shared), each process's in reverse Cuthill-McKee order (mesh::cuthill_mckee_order:
-// a narrow band, so that the assembly and the solver touch nearby memory); a process keeps only
-// its cells (those with a point it owns) and their points, and after a solve receives only its
-// ghost points' values. Every argument and result is in the mesh's numbering.
+// Inside, the points are renumbered (flow/mesh_part.h): under MPI split among the processes by
+// PT-Scotch (balanced in points, few shared), each process's in reverse Cuthill-McKee order; a
+// process holds only its part of the mesh (its cells: those with a point it owns, and their
+// points), and after a solve receives only its ghost points' values. Every argument and result is
+// in the mesh's numbering.
 // Under MPI every process makes one and calls every member alike (they are collective); the
-// whole flow (velocity(), pressure()) is on every process, state()'s fields on the first only
-// (empty on the others).
+// whole flow (velocity(), pressure()) is on every process when asked for, state()'s fields on the
+// first only (empty on the others).
 #pragma once
 
 #include "flow/case.h"
 #include "flow/linear_solver.h"
+#include "flow/mesh_part.h"
 #include "mesh/reporter.h"
 #include "mesh/tetmesh.h"
 
@@ -78,7 +79,10 @@ struct StepReport {
 
 class NavierStokes {
  public:
-  // Checks the case's tags against the mesh's (check_tags) and builds everything a step needs.
+  // Checks the case's tags against the mesh's (check_tags) and builds everything a step needs,
+  // from this process's part of the mesh (distribute_mesh), or from the whole mesh (the first
+  // process's; the others' are not read: it distributes it).
+  NavierStokes(MeshPart part, const FlowCase& flow_case, const Reporter& reporter = silent_reporter());
   NavierStokes(const TetMesh& mesh, const FlowCase& flow_case, const Reporter& reporter = silent_reporter());
   ~NavierStokes();
 
@@ -117,8 +121,14 @@ class NavierStokes {
   double time() const;
   int steps() const;
   int dofs() const;
-  const std::vector<Vec3>& velocity() const;   // m/s per mesh point
-  const std::vector<double>& pressure() const;  // Pa per mesh point
+  // The whole flow per mesh point (m/s, Pa), on every process: under MPI gathered when first asked
+  // for after a solve (every process must ask alike).
+  const std::vector<Vec3>& velocity() const;
+  const std::vector<double>& pressure() const;
+  // This process's flow per point of its part (MeshPart's local numbering: owned, then ghosts),
+  // m/s and Pa; nothing gathered.
+  const std::vector<Vec3>& local_velocity() const;
+  std::vector<double> local_pressure() const;
   std::vector<BoundaryFlow> boundary_flows() const;
   std::string solver_description() const;
   PartitionReport partition() const;

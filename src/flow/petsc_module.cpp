@@ -12,6 +12,8 @@ extern "C" __attribute__((visibility("default"))) const vesselmesh::flow::PetscC
       &sum_all,
       &gather_to_first,
       &partition_graph,
+      &scatter_from_first,
+      &abort_all,
       [](SparsePattern pattern, int block_size, const std::string& defaults, const std::string& options) {
         return new LinearSolver(std::move(pattern), block_size, defaults, options);
       },

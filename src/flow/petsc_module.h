@@ -13,7 +13,7 @@ inline constexpr const char* kPetscModuleFile = "libvesselmesh-petsc.so";
 
 // The module's entry points: a LinearSolver made, used and destroyed inside the module; `layout`
 // first, as in io/gmsh_module.h (raise it when this table or a type it passes changes).
-inline constexpr int kPetscCallsLayout = 7;
+inline constexpr int kPetscCallsLayout = 8;
 struct PetscCalls {
   int layout;
   int (*process_count)();
@@ -23,7 +23,9 @@ struct PetscCalls {
   std::vector<double> (*sum_all)(std::vector<double> values);
   std::vector<double> (*gather_to_first)(const std::vector<double>& values);
   std::vector<int> (*partition_graph)(const std::vector<int>& start, const std::vector<int>& neighbours,
-                                      int total);
+                                      int parts);
+  std::string (*scatter_from_first)(const std::function<std::string(int rank)>& make);
+  void (*abort_all)(int code);
   LinearSolver* (*create)(SparsePattern pattern, int block_size, const std::string& defaults,
                           const std::string& options);
   void (*destroy)(LinearSolver* solver);

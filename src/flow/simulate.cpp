@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <malloc.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -61,6 +62,143 @@ TetMesh read_mesh(const FlowCase& c) {
   throw InputError(fmt::format("{}: mesh \"{}\": a volume mesh is read from .msh (Gmsh) or .vtu (with cell data "
                                "`tag`), as `vesselmesh volume` writes them",
                                c.path, c.mesh));
+}
+
+// This process's peak resident memory so far (MB).
+double peak_memory_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+// The wall whose shear stress this process computes and writes, and how its points lead back to
+// the mesh.
+struct WallPiece {
+  post::WallSurface surface;  // the wall the operator works on
+  std::optional<post::WallShearOperator> shear;
+  TriMesh mesh;                    // the triangles this process writes, in the mesh's unit (labels: tags)
+  std::vector<int> surface_point;  // per point of `mesh`, its point of `surface`
+  std::vector<int> mesh_point;     // per point of `mesh`, its number in the mesh read
+  // The wall points this process owns (each counted on one process) and those of them that took
+  // the face value.
+  int owned_points = 0, owned_fallbacks = 0;
+
+  // Per point of `mesh`, Pa; `velocity` per point of the volume the operator was made on.
+  std::vector<Vec3> stress(const std::vector<Vec3>& velocity, double viscosity) const {
+    const std::vector<Vec3> all = shear->apply(velocity, viscosity);
+    std::vector<Vec3> out(surface_point.size());
+    for (size_t i = 0; i < out.size(); ++i) out[i] = all[surface_point[i]];
+    return out;
+  }
+};
+
+// One process: the whole wall of the mesh read.
+WallPiece whole_wall(const TetMesh& mesh, const std::vector<int>& wall_tags, const FlowCase& fc) {
+  WallPiece w;
+  const std::vector<Tet> all = mesh::all_tetrahedra(mesh);
+  w.surface = post::extract_wall(mesh, all, wall_tags);
+  std::vector<Vec3> si(mesh.points.size());
+  for (size_t i = 0; i < si.size(); ++i) si[i] = mesh.points[i] * fc.length_scale;
+  w.shear.emplace(w.surface, all, si, post::parse_wss_method(fc.wss_method));
+  w.mesh = w.surface.mesh;
+  w.surface_point.resize(w.mesh.num_points());
+  for (int v = 0; v < w.mesh.num_points(); ++v) w.surface_point[v] = v;
+  w.mesh_point = w.surface.volume_point;
+  w.owned_points = w.mesh.num_points();
+  w.owned_fallbacks = w.shear->face_fallbacks();
+  return w;
+}
+
+// Under MPI: the process's part of the wall (MeshPart::wall), the operator on its cells within
+// the stencils' reach (its local points), and the triangles it writes.
+WallPiece distributed_wall(const MeshPart& part, const std::vector<int>& wall_tags, const FlowCase& fc) {
+  WallPiece w;
+  TetMesh band;
+  band.points = part.points;
+  band.boundary = part.wall.triangles;
+  band.boundary_tags = part.wall.tags;
+  w.surface = post::extract_wall(band, part.wall.cells, wall_tags);
+  std::vector<Vec3> si(part.points.size());
+  for (size_t i = 0; i < si.size(); ++i) si[i] = part.points[i] * fc.length_scale;
+  w.shear.emplace(w.surface, part.wall.cells, si, post::parse_wss_method(fc.wss_method));
+  // extract_wall keeps the triangles' order: the written ones, their points numbered anew.
+  std::vector<int> at(w.surface.mesh.num_points(), -1);
+  for (size_t f = 0; f < part.wall.triangles.size(); ++f) {
+    if (!part.wall.written[f]) continue;
+    Triangle tri = w.surface.mesh.triangles[f];
+    for (int& v : tri) {
+      if (at[v] < 0) {
+        at[v] = w.mesh.num_points();
+        w.mesh.points.push_back(w.surface.mesh.points[v]);
+        w.surface_point.push_back(v);
+        w.mesh_point.push_back(part.mesh_point[w.surface.volume_point[v]]);
+      }
+      v = at[v];
+    }
+    w.mesh.triangles.push_back(tri);
+    w.mesh.labels.push_back(part.wall.tags[f]);
+  }
+  for (int v = 0; v < w.surface.mesh.num_points(); ++v)
+    if (w.surface.volume_point[v] < part.owned) {
+      ++w.owned_points;
+      if (w.shear->by_face(v)) ++w.owned_fallbacks;
+    }
+  return w;
+}
+
+// The indices' running sums of every process (per point of its wall piece, `mesh_point` their
+// numbers in the mesh), on the first process: by mesh point, once each (a point two processes
+// write has the same sums on both), with those numbers. Every process calls it.
+std::pair<post::WssIndexAccumulator::State, std::vector<int>> gather_indices(
+    const post::WssIndexAccumulator::State& mine, const std::vector<int>& mesh_point) {
+  constexpr int kWidth = 9;  // mesh point, last (3), integral (3), |tau| integral, change
+  std::vector<double> packed;
+  if (!mine.last.empty())
+    for (size_t k = 0; k < mesh_point.size(); ++k) {
+      packed.push_back(mesh_point[k]);
+      for (int i = 0; i < 3; ++i) packed.push_back(mine.last[k][i]);
+      for (int i = 0; i < 3; ++i) packed.push_back(mine.integral[k][i]);
+      packed.push_back(mine.magnitude_integral[k]);
+      packed.push_back(mine.change[k]);
+    }
+  const std::vector<double> all = gather_to_first(packed);
+  post::WssIndexAccumulator::State whole{mine.samples, mine.start, mine.last_time, {}, {}, {}, {}};
+  std::vector<int> points;
+  std::vector<size_t> order(all.size() / kWidth);
+  for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return all[kWidth * a] < all[kWidth * b]; });
+  for (size_t k : order) {
+    const double* at = &all[kWidth * k];
+    if (!points.empty() && points.back() == static_cast<int>(at[0])) continue;
+    points.push_back(static_cast<int>(at[0]));
+    whole.last.emplace_back(at[1], at[2], at[3]);
+    whole.integral.emplace_back(at[4], at[5], at[6]);
+    whole.magnitude_integral.push_back(at[7]);
+    whole.change.push_back(at[8]);
+  }
+  return {std::move(whole), std::move(points)};
+}
+
+// A checkpoint's indices (by mesh point, `points` sorted) at the points of this process's wall
+// piece. InputError when one is missing (a checkpoint of another wall).
+post::WssIndexAccumulator::State indices_at(const post::WssIndexAccumulator::State& whole,
+                                            const std::vector<int>& points, const std::vector<int>& mesh_point,
+                                            const std::string& path) {
+  post::WssIndexAccumulator::State mine{whole.samples, whole.start, whole.last_time, {}, {}, {}, {}};
+  if (whole.last.empty()) return mine;
+  for (int m : mesh_point) {
+    const auto it = std::lower_bound(points.begin(), points.end(), m);
+    if (it == points.end() || *it != m)
+      throw InputError(fmt::format("{}: the checkpoint has no indices at wall point {} of the mesh: run the case "
+                                   "without --restart",
+                                   path, m));
+    const size_t k = static_cast<size_t>(it - points.begin());
+    mine.last.push_back(whole.last[k]);
+    mine.integral.push_back(whole.integral[k]);
+    mine.magnitude_integral.push_back(whole.magnitude_integral[k]);
+    mine.change.push_back(whole.change[k]);
+  }
+  return mine;
 }
 
 std::string pvd(const std::vector<std::pair<double, std::string>>& files, const std::string& units) {
@@ -122,39 +260,88 @@ std::map<std::string, std::string> end_logs(const std::string& log, const std::v
 SimulationSummary simulate(const FlowCase& input_case, const std::string& output_dir,
                            const std::string& extra_petsc_options, const Reporter& all_reporter, bool restart) {
   const auto start = Clock::now();
-  // Under mpirun every process reads the mesh, keeps its part of it and assembles its own rows; the
-  // flow is whole on every process after a step, the first computes the wall shear stress and writes.
-  const int ranks = process_count();
-  const bool writer = process_rank() == 0;
+  // Under mpirun the first process reads the mesh and sends every process its part (the others
+  // never read it); each assembles its own rows, computes the wall shear stress of its part of the
+  // wall and writes its pieces of the results (pieces/, joined by .pvtu / .pvtp files the first
+  // writes). On one process the results are whole files, the mesh as read.
+  const int ranks = process_count(), rank = process_rank();
+  const bool writer = rank == 0, pieces = ranks > 1;
   const Reporter& reporter = writer ? all_reporter : silent_reporter();
   FlowCase fc = input_case;
   if (!extra_petsc_options.empty()) fc.petsc_options += " " + extra_petsc_options;
-  const TetMesh mesh = read_mesh(fc);
-  reporter.info(fmt::format("mesh {}: {} points, {} tetrahedra, {} prisms, {} boundary triangles", fc.mesh,
-                            mesh.num_points(), mesh.num_tets(), mesh.num_prisms(), mesh.boundary.size()));
+  std::vector<std::string> wall_names;
+  for (const BoundaryCondition& b : fc.boundaries)
+    if (b.type == BoundaryType::wall) wall_names.push_back(b.tag);
+  TetMesh mesh;
+  uint64_t fingerprint = 0;  // of the mesh and the time step, the first process's (checkpoints)
+  std::exception_ptr unread;
+  if (writer) {
+    try {
+      mesh = read_mesh(fc);
+      reporter.info(fmt::format("mesh {}: {} points, {} tetrahedra, {} prisms, {} boundary triangles", fc.mesh,
+                                mesh.num_points(), mesh.num_tets(), mesh.num_prisms(), mesh.boundary.size()));
+      fingerprint = run_fingerprint(mesh, fc.dt);
+    } catch (...) {
+      unread = std::current_exception();
+    }
+  }
+  MeshPart part = distribute_mesh(writer ? &mesh : nullptr, fc.mesh, unread, pieces ? wall_names : std::vector<std::string>{});
+  if (pieces) {  // the parts hold it now: its memory (and the reading's, left in the heap) given back
+    mesh = TetMesh{};
+    malloc_trim(0);
+  }
+  const double distribution_memory = peak_memory_mb();  // the first process's: the whole mesh read and split
+  if (pieces)
+    reporter.info(fmt::format("mesh read and split by the first process (peak memory {:.0f} MB), a part sent to "
+                              "each of the {} others",
+                              distribution_memory, ranks - 1));
   reporter.info(fmt::format("units: mesh in {}, scaled by {:g} to metres; velocity m/s, pressure Pa, wss Pa",
                             fc.length_unit, fc.length_scale));
-  NavierStokes ns(mesh, fc, reporter);
-
+  const int mesh_tetrahedra = part.mesh_tetrahedra, mesh_points = part.total_points;
   std::vector<int> wall_tags;
-  for (const auto& [tag, name] : mesh::boundary_tag_names(mesh))
-    for (const BoundaryCondition& b : fc.boundaries)
-      if (b.tag == name && b.type == BoundaryType::wall) wall_tags.push_back(tag);
-  const std::vector<Tet> all = mesh::all_tetrahedra(mesh);
-  // The wall and its shear stress where the whole flow is gathered and written: on the first process.
-  const post::WallSurface wall = writer ? post::extract_wall(mesh, all, wall_tags) : post::WallSurface{};
-  std::optional<post::WallShearOperator> wall_shear;
-  if (writer) {
-    std::vector<Vec3> si(mesh.points.size());
-    for (size_t i = 0; i < si.size(); ++i) si[i] = mesh.points[i] * fc.length_scale;
-    wall_shear.emplace(wall, all, si, post::parse_wss_method(fc.wss_method));
-    reporter.info(fmt::format("wall shear stress: {} method on {} wall points{}", fc.wss_method,
-                              wall.mesh.num_points(),
-                              wall_shear->face_fallbacks() > 0
-                                  ? fmt::format(" ({} by their faces: too few neighbours for a quadratic)",
-                                                wall_shear->face_fallbacks())
-                                  : ""));
+  for (const auto& [tag, name] : part.tag_names)
+    if (std::find(wall_names.begin(), wall_names.end(), name) != wall_names.end()) wall_tags.push_back(tag);
+  // The results this process writes: the whole mesh on one process; under MPI its piece of the
+  // fluid (its cells whose least point it owns) and of the wall (its wall triangles).
+  WallPiece wall;
+  TetMesh fluid_piece;
+  std::vector<int> fluid_local;  // per point of the fluid piece, its local point
+  if (pieces) {
+    wall = distributed_wall(part, wall_tags, fc);
+    fluid_piece.tag_names = part.tag_names;
+    std::vector<int> at(part.points.size(), -1);
+    for (const Tet& t4 : part.tets) {
+      int least = t4[0];
+      for (int a : t4)
+        if (part.local_global[a] < part.local_global[least]) least = a;
+      if (least >= part.owned) continue;  // another process's
+      Tet cell = t4;
+      for (int& a : cell) {
+        if (at[a] < 0) {
+          at[a] = static_cast<int>(fluid_local.size());
+          fluid_local.push_back(a);
+          fluid_piece.points.push_back(part.points[a]);
+        }
+        a = at[a];
+      }
+      fluid_piece.tets.push_back(cell);
+    }
+  } else {
+    wall = whole_wall(mesh, wall_tags, fc);
   }
+  NavierStokes ns(std::move(part), fc, reporter);
+  const int wall_points = pieces ? static_cast<int>(sum_all({static_cast<double>(wall.owned_points)})[0])
+                                 : wall.mesh.num_points();
+  const int fallbacks = pieces ? static_cast<int>(sum_all({static_cast<double>(wall.owned_fallbacks)})[0])
+                               : wall.shear->face_fallbacks();
+  reporter.info(fmt::format("wall shear stress: {} method on {} wall points{}", fc.wss_method, wall_points,
+                            fallbacks > 0 ? fmt::format(" ({} by their faces: too few neighbours for a quadratic)",
+                                                        fallbacks)
+                                          : ""));
+  // The wall shear stress at the wall points this process writes (Pa).
+  const auto wall_stress = [&]() {
+    return wall.stress(pieces ? ns.local_velocity() : ns.velocity(), fc.viscosity);
+  };
 
   if (writer) std::filesystem::create_directories(output_dir);
   const PartitionReport partition = ns.partition();
@@ -162,7 +349,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     const auto [least, most] = std::minmax_element(partition.owned_points.begin(), partition.owned_points.end());
     const auto [least_ghosts, most_ghosts] =
         std::minmax_element(partition.ghost_points.begin(), partition.ghost_points.end());
-    const double mean = static_cast<double>(mesh.num_points()) / ranks;
+    const double mean = static_cast<double>(mesh_points) / ranks;
     reporter.info(fmt::format("{} MPI processes (points split by PT-Scotch): {} to {} unknowns each (largest / mean "
                               "{:.3f}), {} to {} ghost points, up to {} neighbours",
                               ranks, 4 * *least, 4 * *most, *most / mean, *least_ghosts, *most_ghosts,
@@ -171,17 +358,14 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   const std::string units = fmt::format("points in {} (x {:g} m), velocity m/s, pressure Pa, wss Pa, time s",
                                         fc.length_unit, fc.length_scale);
   SimulationSummary summary;
-  summary.points = mesh.num_points();
-  summary.tetrahedra = static_cast<int>(all.size());
+  summary.points = mesh_points;
+  summary.tetrahedra = mesh_tetrahedra;
+  summary.distribution_memory_mb = distribution_memory;
   summary.dofs = ns.dofs();
   summary.ranks = ranks;
   summary.partition = partition;
   // Every process's peak resident memory (MB), gathered (every process calls it).
-  const auto gather_memory = [&]() {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    summary.peak_memory_mb = gather_all(static_cast<double>(usage.ru_maxrss) / 1024.0);
-  };
+  const auto gather_memory = [&]() { summary.peak_memory_mb = gather_all(peak_memory_mb()); };
   summary.length_scale = fc.length_scale;
   summary.setup_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   std::vector<std::pair<double, std::string>> fluid_files, wall_files;
@@ -231,6 +415,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     parts["neighbours"] = summary.partition.neighbours;
     j["partition"] = parts;
     if (!summary.peak_memory_mb.empty()) j["peak_memory_mb"] = summary.peak_memory_mb;
+    j["distribution_peak_memory_mb"] = summary.distribution_memory_mb;
     if (!summary.ends.empty()) {
       nlohmann::ordered_json ends = nlohmann::ordered_json::array();
       for (size_t k = 0; k < summary.ends.size(); ++k) {
@@ -247,7 +432,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     if (!fc.steady) j["initial"] = fc.stokes_start ? "stokes" : "rest";
     if (fc.period > 0.0) j["period"] = fc.period;
     if (summary.indices_end > summary.indices_start)
-      j["indices"] = {{"file", "indices.vtp"}, {"start_s", summary.indices_start}, {"end_s", summary.indices_end},
+      j["indices"] = {{"file", summary.indices_file}, {"start_s", summary.indices_start}, {"end_s", summary.indices_end},
                       {"units", {{"tawss", "Pa"}, {"osi", "1"}, {"rrt", "1/Pa"}, {"twssg", "Pa/s"}}}};
     j["steps"] = summary.steps;
     j["saved"] = summary.saved;
@@ -262,39 +447,77 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     io::write_text(output_dir + "/summary.json", j.dump(2) + "\n");
   };
 
-  // Hemodynamic indices over the last period (the whole run without one), from every step.
+  // A result file: whole on one process (NAME.vtu / NAME.vtp); under MPI each process writes its
+  // piece (pieces/NAME_RANK.vtu) and, once all have, the first the .pvtu / .pvtp that joins them.
+  // `write_piece(path)` writes this process's; `fields` describe its point data. Returns the name.
+  if (pieces && writer) std::filesystem::create_directories(output_dir + "/pieces");
+  const auto write_result = [&](const std::string& name, io::VtkFormat format, const std::vector<Field>& fields,
+                                const std::function<void(const std::string&)>& write_piece) {
+    const std::string ext = format == io::VtkFormat::vtu ? "vtu" : "vtp";
+    if (!pieces) {
+      write_piece(output_dir + "/" + name + "." + ext);
+      return name + "." + ext;
+    }
+    write_piece(fmt::format("{}/pieces/{}_{}.{}", output_dir, name, rank, ext));
+    any_process(false);  // every piece written
+    if (writer) {
+      std::vector<std::string> sources;
+      for (int r = 0; r < ranks; ++r) sources.push_back(fmt::format("pieces/{}_{}.{}", name, r, ext));
+      io::write_parallel_file(output_dir + "/" + name + ".p" + ext, format, sources, fields);
+    }
+    return name + ".p" + ext;
+  };
+
+  // Hemodynamic indices over the last period (the whole run without one), from every step, at
+  // the wall points this process writes.
   post::WssIndexAccumulator indices;
   const double window_start = fc.period > 0.0 && fc.period < fc.end ? fc.end - fc.period : 0.0;
   const auto write_indices = [&]() {
-    if (!writer || indices.samples() < 2) return;
+    if (indices.samples() < 2) return;
     const post::WssIndices r = indices.result();
-    post::write_indices(output_dir + "/indices.vtp", wall.mesh, r);
+    const std::string file = write_result(
+        "indices", io::VtkFormat::vtp,
+        {Field::scalar("tawss", {}), Field::scalar("osi", {}), Field::scalar("rrt", {}), Field::scalar("twssg", {})},
+        [&](const std::string& path) { post::write_indices(path, wall.mesh, r); });
     summary.indices_start = r.start;
     summary.indices_end = r.end;
-    reporter.info(fmt::format("indices.vtp: tawss (Pa), osi, rrt (1/Pa), twssg (Pa/s) over t = {:g} to {:g} s, {} "
-                              "samples",
+    summary.indices_file = file;
+    reporter.info(fmt::format("{}: tawss (Pa), osi, rrt (1/Pa), twssg (Pa/s) over t = {:g} to {:g} s, {} samples", file,
                               r.start, r.end, r.samples));
   };
 
   // `computed`: this step's wall shear stress when the indices already needed it.
   const auto save = [&](double time, const std::vector<Vec3>* computed) {
     const std::string name = fmt::format("{:06d}", summary.saved);
-    if (!writer) {
-      summary.saved += 1;
-      return;
-    }
-    const std::vector<double>& pressure = ns.pressure();
-    io::write_vtu(output_dir + "/fluid_" + name + ".vtu", mesh,
-                  {Field::vector("velocity", ns.velocity()), Field::scalar("pressure", pressure)});
-    const std::vector<Vec3> tau =
-        computed ? *computed : wall_shear->apply(ns.velocity(), fc.viscosity);
+    const std::vector<Field> fluid_fields{Field::vector("velocity", {}), Field::scalar("pressure", {})};
+    const std::string fluid_file = write_result("fluid_" + name, io::VtkFormat::vtu, fluid_fields,
+                                                [&](const std::string& path) {
+      if (!pieces) {
+        io::write_vtu(path, mesh, {Field::vector("velocity", ns.velocity()), Field::scalar("pressure", ns.pressure())});
+        return;
+      }
+      const std::vector<Vec3>& u = ns.local_velocity();
+      const std::vector<double> p = ns.local_pressure();
+      std::vector<Vec3> velocity(fluid_local.size());
+      std::vector<double> pressure(fluid_local.size());
+      for (size_t k = 0; k < fluid_local.size(); ++k) {
+        velocity[k] = u[fluid_local[k]];
+        pressure[k] = p[fluid_local[k]];
+      }
+      io::write_vtu(path, fluid_piece, {Field::vector("velocity", velocity), Field::scalar("pressure", pressure)});
+    });
+    const std::vector<Vec3> tau = computed ? *computed : wall_stress();
     std::vector<double> magnitude(tau.size());
     for (size_t i = 0; i < tau.size(); ++i) magnitude[i] = tau[i].norm();
-    io::write_vtp(output_dir + "/wall_" + name + ".vtp", wall.mesh,
-                  {Field::vector("wss", tau), Field::scalar("wss_magnitude", magnitude)});
-    fluid_files.emplace_back(time, "fluid_" + name + ".vtu");
-    wall_files.emplace_back(time, "wall_" + name + ".vtp");
+    const std::string wall_file =
+        write_result("wall_" + name, io::VtkFormat::vtp, {Field::vector("wss", {}), Field::scalar("wss_magnitude", {})},
+                     [&](const std::string& path) {
+                       io::write_vtp(path, wall.mesh, {Field::vector("wss", tau), Field::scalar("wss_magnitude", magnitude)});
+                     });
+    fluid_files.emplace_back(time, fluid_file);
+    wall_files.emplace_back(time, wall_file);
     summary.saved += 1;
+    if (!writer) return;
     io::write_text(output_dir + "/fluid.pvd", pvd(fluid_files, units));
     io::write_text(output_dir + "/wall.pvd", pvd(wall_files, units));
     write_logs();
@@ -314,9 +537,9 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
 
   // Checkpoints: the state to go on from, in the mesh's numbering.
   const std::string checkpoint_path = output_dir + "/checkpoint.bin";
-  const uint64_t fingerprint = run_fingerprint(mesh, fc.dt);
   const auto write_checkpoint_now = [&]() {
     FlowState flow = ns.state();  // every process takes part; the first has it whole
+    auto gathered = gather_indices(indices.state(), wall.mesh_point);
     if (!writer) return;
     Checkpoint c;
     c.fingerprint = fingerprint;
@@ -326,7 +549,8 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     c.log = log;
     c.fluid_files = fluid_files;
     c.wall_files = wall_files;
-    c.indices = indices.state();
+    c.indices = std::move(gathered.first);
+    c.index_points = std::move(gathered.second);
     write_checkpoint(checkpoint_path, c);
   };
   int first_step = 0;
@@ -335,7 +559,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     if (!std::filesystem::exists(checkpoint_path))
       throw InputError(fmt::format("{}: no checkpoint to restart from; run the case without --restart", checkpoint_path));
     const Checkpoint c = read_checkpoint(checkpoint_path);
-    if (c.fingerprint != fingerprint)
+    if (any_process(writer && c.fingerprint != fingerprint))
       throw InputError(fmt::format("{}: the checkpoint is of another mesh or time step than {}'s; run the case without "
                                    "--restart (or into another folder)",
                                    checkpoint_path, fc.path));
@@ -348,7 +572,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     end_texts = end_logs(log, end_tags);
     fluid_files = c.fluid_files;
     wall_files = c.wall_files;
-    indices.restore(c.indices);
+    indices.restore(indices_at(c.indices, c.index_points, wall.mesh_point, checkpoint_path));
     if (writer) {  // the folder as it was at the checkpoint (later saves are written again)
       io::write_text(output_dir + "/fluid.pvd", pvd(fluid_files, units));
       io::write_text(output_dir + "/wall.pvd", pvd(wall_files, units));
@@ -397,9 +621,9 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
         log_step(r);
         if (k == 0) summary.solver = ns.solver_description();
         std::vector<Vec3> tau;
-        const bool in_window = writer && r.time >= window_start - 0.5 * fc.dt;
+        const bool in_window = r.time >= window_start - 0.5 * fc.dt;
         if (in_window) {
-          tau = wall_shear->apply(ns.velocity(), fc.viscosity);
+          tau = wall_stress();
           indices.add(r.time, tau);
         }
         if (r.step % fc.save_every == 0 || k + 1 == steps) save(r.time, in_window ? &tau : nullptr);

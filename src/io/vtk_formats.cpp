@@ -27,6 +27,7 @@
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include <cmath>
+#include <filesystem>
 #include <mutex>
 
 namespace vesselmesh::io {
@@ -162,7 +163,67 @@ SurfaceData finish_surface(SurfaceData out, std::vector<Field> cell_fields, cons
 }
 
 SurfaceData read_vtk_surface(const std::string& path, VtkFormat format, const std::string& label_array) {
-  return parse_vtk_xml_surface(read_file(path), format, path, label_array);
+  if (!path.ends_with(".pvtp")) return parse_vtk_xml_surface(read_file(path), format, path, label_array);
+  // The pieces joined as they are, then labelled and merged as one surface.
+  SurfaceData all;
+  std::vector<Field> cells;
+  std::string labels = label_array;
+  bool first = true;
+  for (const std::string& source : parallel_pieces(path)) {
+    SurfaceData piece = read_vtk_surface(source, VtkFormat::vtp, label_array);
+    const int offset = all.mesh.num_points();
+    all.mesh.points.insert(all.mesh.points.end(), piece.mesh.points.begin(), piece.mesh.points.end());
+    for (Triangle t : piece.mesh.triangles) {
+      for (int& v : t) v += offset;
+      all.mesh.triangles.push_back(t);
+    }
+    if (!piece.label_array.empty()) {
+      labels = piece.label_array;
+      piece.cell_data.push_back(Field::labels(piece.label_array, piece.mesh.labels));
+    }
+    append_piece_fields(all.point_data, piece.point_data, first);
+    append_piece_fields(cells, piece.cell_data, first);
+    first = false;
+  }
+  return finish_surface(std::move(all), std::move(cells), labels, path);
+}
+
+std::vector<std::string> parallel_pieces(const std::string& path) {
+  const std::string text = read_file(path);
+  if (text.find("<PUnstructuredGrid") == std::string::npos && text.find("<PPolyData") == std::string::npos)
+    throw InputError(fmt::format("{}: not a VTK parallel file (.pvtu or .pvtp: no <PUnstructuredGrid> or <PPolyData>)",
+                                 path));
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  std::vector<std::string> sources;
+  for (size_t at = text.find("<Piece"); at != std::string::npos; at = text.find("<Piece", at + 1)) {
+    const size_t end = text.find('>', at);
+    const size_t source = text.find("Source=\"", at);
+    if (source == std::string::npos || source > end)
+      throw InputError(fmt::format("{}: a <Piece> without a Source", path));
+    const size_t close = text.find('"', source + 8);
+    sources.push_back((folder / text.substr(source + 8, close - source - 8)).string());
+  }
+  if (sources.empty()) throw InputError(fmt::format("{}: names no piece", path));
+  return sources;
+}
+
+void write_parallel_file(const std::string& path, VtkFormat format, const std::vector<std::string>& sources,
+                         const std::vector<Field>& point_data, bool labels) {
+  const char* kind = format == VtkFormat::vtu ? "PUnstructuredGrid" : "PPolyData";
+  std::string text = fmt::format("<?xml version=\"1.0\"?>\n<VTKFile type=\"{}\" version=\"0.1\" "
+                                 "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <{} GhostLevel=\"0\">\n",
+                                 kind, kind);
+  text += "    <PPointData>\n";
+  for (const Field& f : point_data)
+    text += fmt::format("      <PDataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\"/>\n",
+                        f.integer ? "Int32" : "Float64", f.name, f.components);
+  text += "    </PPointData>\n";
+  if (format == VtkFormat::vtu || labels)
+    text += "    <PCellData>\n      <PDataArray type=\"Int32\" Name=\"tag\" NumberOfComponents=\"1\"/>\n    </PCellData>\n";
+  text += "    <PPoints>\n      <PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>\n    </PPoints>\n";
+  for (const std::string& source : sources) text += fmt::format("    <Piece Source=\"{}\"/>\n", source);
+  text += fmt::format("  </{}>\n</VTKFile>\n", kind);
+  write_text(path, text);
 }
 
 namespace {

@@ -28,6 +28,8 @@ struct SurfaceData {
   std::vector<std::vector<int>> lines;  // VTP polylines (indices into mesh.points), if any
 };
 
+// A .pvtp (VTP pieces, as `vesselmesh simulate` writes under MPI) is read whole: its pieces
+// joined, the points they share merged.
 SurfaceData read_vtk_surface(const std::string& path, VtkFormat format,
                              const std::string& label_array = "");
 
@@ -59,6 +61,18 @@ void write_vtu(const std::string& path, const TetMesh& mesh, const std::vector<F
 // "tag_<number>" otherwise; `layer` and `column` kept when present. Points are not merged.
 // Checked like the surface readers: a bad file is an InputError naming it. `point_data`, when
 // given, receives the file's numeric point arrays (e.g. the solver's velocity and pressure).
+// A .pvtu (VTU pieces) is read whole: its pieces one after the other (the points they share
+// repeated; each piece's cells on its own points).
 TetMesh read_vtu_volume(const std::string& path, std::vector<Field>* point_data = nullptr);
+
+// A dataset in pieces (one per MPI process): ParaView's .pvtu / .pvtp file naming the pieces
+// (`sources`, relative to its folder) and the arrays they hold (the fields' names, components
+// and types; their values are in the pieces, written by write_vtu / write_vtp: a vtu piece has
+// the cell array `tag`, a vtp piece has it when `labels`), written atomically.
+void write_parallel_file(const std::string& path, VtkFormat format, const std::vector<std::string>& sources,
+                         const std::vector<Field>& point_data, bool labels = true);
+// The pieces a .pvtu / .pvtp names, as paths from the current folder. InputError when it is not
+// one (naming it) or names none.
+std::vector<std::string> parallel_pieces(const std::string& path);
 
 }  // namespace vesselmesh::io

@@ -622,6 +622,34 @@ SurfaceData parse_vtk_xml_surface(std::string_view bytes, VtkFormat format, cons
 }
 
 TetMesh read_vtu_volume(const std::string& path, std::vector<Field>* point_data) {
+  if (path.ends_with(".pvtu")) {  // the pieces one after the other
+    TetMesh all;
+    std::vector<Field> fields;
+    bool first = true;
+    for (const std::string& source : parallel_pieces(path)) {
+      std::vector<Field> piece_fields;
+      TetMesh piece = read_vtu_volume(source, point_data ? &piece_fields : nullptr);
+      const int offset = all.num_points();
+      const auto shift = [&](auto cell) {
+        for (int& v : cell) v += offset;
+        return cell;
+      };
+      if (first) {
+        all.volume_tag = piece.volume_tag;
+        all.volume_name = piece.volume_name;
+      }
+      all.points.insert(all.points.end(), piece.points.begin(), piece.points.end());
+      for (const Tet& t : piece.tets) all.tets.push_back(shift(t));
+      for (const Prism& p : piece.prisms) all.prisms.push_back(shift(p));
+      for (const Triangle& t : piece.boundary) all.boundary.push_back(shift(t));
+      all.boundary_tags.insert(all.boundary_tags.end(), piece.boundary_tags.begin(), piece.boundary_tags.end());
+      all.tag_names.insert(piece.tag_names.begin(), piece.tag_names.end());
+      append_piece_fields(fields, piece_fields, first);
+      first = false;
+    }
+    if (point_data) *point_data = std::move(fields);
+    return all;
+  }
   keep_vtk_errors();
   const std::string bytes = read_file(path);
   if (bytes.empty()) throw InputError(fmt::format("{}: the file is empty", path));

@@ -57,6 +57,10 @@ class WallShearOperator {
   WssMethod method() const { return method_; }
   // Wall points that took the face value because their 2-ring does not fix a quadratic.
   int face_fallbacks() const { return fallbacks_; }
+  // Whether wall point `v` takes the face value (the face method, or a fallback).
+  bool by_face(int v) const {
+    return method_ == WssMethod::face || offset_.empty() || offset_[v] == offset_[v + 1];
+  }
 
  private:
   struct Face {

@@ -13,9 +13,11 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <numbers>
 #include <sstream>
 
@@ -694,9 +696,10 @@ TEST(Cli, SimulateStoppedBySigtermGoesOnWithRestart) {
 
 // mpirun -np 2, 3 and 4 give the one-process results to the solver's tolerance (issues 8, 28):
 // velocity, pressure and wall shear stress within 1e-6 (relative, 2-norm over the points) with
-// -ksp_rtol 1e-10; the points split by PT-Scotch (balanced within 2 % of the mean here, the same
-// split when run again), each process holding its ghosts only; the summary says how the points
-// were shared and each process's peak memory. A run on 2 processes stopped at its checkpoint goes
+// -ksp_rtol 1e-10, and so do the hemodynamic indices; the points split by PT-Scotch (balanced
+// within 2 % of the mean here, the same split when run again), each process holding its part of
+// the mesh only and writing its pieces of the results (.pvtu / .pvtp, read whole here as `wss` and
+// `sample` read them); the summary says how the points were shared and each process's peak memory. A run on 2 processes stopped at its checkpoint goes
 // on under mpirun with --restart. The outlet is an rcr end: its capacitor's pressure agrees too.
 TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
   if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun is not installed";
@@ -720,13 +723,27 @@ TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
                                 " 2>" + quote(tmp.path(folder + ".err"));
     return std::system(command.c_str());
   };
+  // A point array of a result, whole (one process's .vtu / .vtp) or in pieces (.pvtu / .pvtp: the
+  // points the pieces share repeated in a .pvtu), by point in the order of their coordinates, once each.
   const auto point_data = [&](const std::string& folder, const std::string& file, const std::string& name) {
     std::vector<Field> fields;
-    if (file.ends_with(".vtu")) io::read_vtu_volume(tmp.path(folder + "/" + file), &fields);
-    else fields = io::read_vtk_surface(tmp.path(folder + "/" + file), io::VtkFormat::vtp).point_data;
+    std::vector<Vec3> points;
+    if (file.ends_with("vtu")) points = io::read_vtu_volume(tmp.path(folder + "/" + file), &fields).points;
+    else {
+      io::SurfaceData wall = io::read_vtk_surface(tmp.path(folder + "/" + file), io::VtkFormat::vtp);
+      points = wall.mesh.points;
+      fields = wall.point_data;
+    }
+    std::map<std::array<double, 3>, std::vector<double>> by_point;
     for (const Field& f : fields)
-      if (f.name == name) return f.values;
-    return std::vector<double>{};
+      if (f.name == name)
+        for (size_t k = 0; k < points.size(); ++k)
+          by_point[{points[k].x(), points[k].y(), points[k].z()}].assign(
+              f.values.begin() + static_cast<std::ptrdiff_t>(k * f.components),
+              f.values.begin() + static_cast<std::ptrdiff_t>((k + 1) * f.components));
+    std::vector<double> values;
+    for (const auto& [point, value] : by_point) values.insert(values.end(), value.begin(), value.end());
+    return values;
   };
   for (int ranks : {2, 3, 4}) {
     SCOPED_TRACE(fmt::format("{} processes", ranks));
@@ -754,14 +771,20 @@ TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
                     .get<double>(),
                 capacitor, 1e-6 * capacitor);
     EXPECT_LT(relative_difference(point_data("one", "fluid_000000.vtu", "velocity"),
-                                  point_data(folder, "fluid_000000.vtu", "velocity")),
+                                  point_data(folder, "fluid_000000.pvtu", "velocity")),
               1e-6);
     EXPECT_LT(relative_difference(point_data("one", "fluid_000000.vtu", "pressure"),
-                                  point_data(folder, "fluid_000000.vtu", "pressure")),
+                                  point_data(folder, "fluid_000000.pvtu", "pressure")),
               1e-6);
     EXPECT_LT(relative_difference(point_data("one", "wall_000000.vtp", "wss"),
-                                  point_data(folder, "wall_000000.vtp", "wss")),
+                                  point_data(folder, "wall_000000.pvtp", "wss")),
               1e-6);
+    EXPECT_LT(relative_difference(point_data("one", "indices.vtp", "tawss"), point_data(folder, "indices.pvtp", "tawss")),
+              1e-6);
+    // Each process wrote its pieces; the first read the mesh and says its peak memory then.
+    EXPECT_TRUE(std::filesystem::exists(tmp.path(fmt::format("{}/pieces/fluid_000000_{}.vtu", folder, ranks - 1))));
+    EXPECT_GT(Json::parse(read_text(tmp.path(folder + "/summary.json")))["distribution_peak_memory_mb"].get<double>(),
+              10.0);
   }
   // The same split run after run.
   ASSERT_EQ(mpirun(3, "again"), 0) << read_text(tmp.path("again.err"));
@@ -774,9 +797,11 @@ TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
   example.replace("end = 0.01", "end = 0.02");
   test::write_bytes(tmp.path("case.toml"), example.text);
   ASSERT_EQ(mpirun(2, "resumed", " --restart"), 0) << read_text(tmp.path("resumed.err"));
-  EXPECT_LT(relative_difference(point_data("np2", "fluid_000000.vtu", "velocity"),
-                                point_data("resumed", "fluid_000001.vtu", "velocity")),
+  EXPECT_LT(relative_difference(point_data("np2", "fluid_000000.pvtu", "velocity"),
+                                point_data("resumed", "fluid_000001.pvtu", "velocity")),
             1e-9);  // its first save was the shorter run's end
+  EXPECT_LT(relative_difference(point_data("np2", "indices.pvtp", "tawss"), point_data("resumed", "indices.pvtp", "tawss")),
+            1e-9);  // the indices' sums went on from the checkpoint
 }
 
 // `windkessel` (issue 32): on a Y bifurcation with daughters of radii 2.4 and 1.8 mm, the outlets'

@@ -43,6 +43,7 @@ Checkpoint sample_checkpoint() {
   c.indices.integral = {Vec3(1, 1, 1)};
   c.indices.magnitude_integral = {0.7};
   c.indices.change = {0.01};
+  c.index_points = {42};
   return c;
 }
 
@@ -67,6 +68,7 @@ TEST(Checkpoint, ReadsBackWhatItWroteAndRefusesDamagedFiles) {
   EXPECT_EQ(r.indices.samples, 4);
   EXPECT_EQ(r.indices.last, c.indices.last);
   EXPECT_EQ(r.indices.change, c.indices.change);
+  EXPECT_EQ(r.index_points, c.index_points);
 
   // Cut short at any byte: a clear error, never a half-read state.
   const std::string bytes = io::read_file(path);
