@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
 #include <unistd.h>
@@ -58,6 +59,12 @@ void TerminalReporter::progress(std::string_view task, double fraction) const {
     }
     task_.clear();
   }
+}
+
+int launch_rank() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
+    if (const char* value = std::getenv(name)) return std::atoi(value);
+  return 0;
 }
 
 void add_common_options(CLI::App& app, CommonOptions& options) {

@@ -34,6 +34,10 @@ class TerminalReporter : public Reporter {
   mutable std::chrono::steady_clock::time_point started_;
 };
 
+// This process's rank among those mpirun (Open MPI, MPICH) started, from their environment
+// (0 when none did), known before MPI is: under mpirun the first alone tells a bad command line.
+int launch_rank();
+
 // Options every subcommand has.
 struct CommonOptions {
   bool json = false;

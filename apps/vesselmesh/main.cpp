@@ -32,7 +32,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    fmt::print(stderr, "vesselmesh: error: {}\nRun 'vesselmesh --help' or 'vesselmesh COMMAND --help'.\n", e.what());
+    // Under mpirun every process parses the same command line: the first tells what is wrong.
+    if (launch_rank() == 0)
+      fmt::print(stderr, "vesselmesh: error: {}\nRun 'vesselmesh --help' or 'vesselmesh COMMAND --help'.\n", e.what());
     return 2;
   }
   for (const Command& command : commands)

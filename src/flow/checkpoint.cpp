@@ -6,14 +6,37 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstring>
-#include <fstream>
+#include <filesystem>
 
 namespace vesselmesh::flow {
 namespace {
 
 constexpr char kMagic[] = "vesselmesh checkpoint\n";
-constexpr uint32_t kVersion = 3;  // 2: the rcr ends' capacitor pressures; 3: the indices' mesh points
+constexpr uint32_t kVersion = 4;  // 2: the rcr ends' capacitor pressures; 3: the indices' mesh points; 4: pieces
+
+constexpr char kPieceMagic[] = "vesselmesh checkpoint piece\n";
+
+// A checkpoint file (`magic`: the checkpoint's or a piece's) of this format, past its header; its
+// reads cut short, another file or another format are InputErrors naming it.
+template <size_t N>
+io::ByteReader open_checkpoint_file(const std::string& path, const char (&magic)[N]) {
+  io::ByteReader r(io::read_file(path), [path](size_t at, size_t size) {
+    throw InputError(fmt::format("{}: the checkpoint is cut short (at byte {} of {}): it was not written whole; "
+                                 "run the case again without --restart",
+                                 path, at, size));
+  });
+  char read[N - 1];
+  r.bytes(read, sizeof read);
+  if (std::memcmp(read, magic, sizeof read) != 0)
+    throw InputError(fmt::format("{}: not a vesselmesh checkpoint", path));
+  const auto version = r.value<uint32_t>();
+  if (version != kVersion)
+    throw InputError(fmt::format("{}: a checkpoint of format {} (this program reads {}): run the case again", path,
+                                 version, kVersion));
+  return r;
+}
 
 // FNV-1a over bytes.
 struct Hash {
@@ -73,27 +96,12 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   w.vector(s.magnitude_integral);
   w.vector(s.change);
   w.vector(c.index_points);
-  io::write_atomically(path, [&](const std::string& temporary) {
-    std::ofstream out(temporary, std::ios::binary);
-    out.write(w.text().data(), static_cast<std::streamsize>(w.text().size()));
-    if (!out) throw InputError(fmt::format("{}: cannot write the checkpoint", path));
-  });
+  w.value(c.pieces);
+  io::write_text(path, w.text());
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
-  io::ByteReader r(io::read_file(path), [&](size_t at, size_t size) {
-    throw InputError(fmt::format("{}: the checkpoint is cut short (at byte {} of {}): it was not written whole; "
-                                 "run the case again without --restart",
-                                 path, at, size));
-  });
-  char magic[sizeof kMagic - 1];
-  r.bytes(magic, sizeof magic);
-  if (std::memcmp(magic, kMagic, sizeof magic) != 0)
-    throw InputError(fmt::format("{}: not a vesselmesh checkpoint", path));
-  const auto version = r.value<uint32_t>();
-  if (version != kVersion)
-    throw InputError(fmt::format("{}: a checkpoint of format {} (this program reads {}): run the case again", path,
-                                 version, kVersion));
+  io::ByteReader r = open_checkpoint_file(path, kMagic);
   Checkpoint c;
   c.fingerprint = r.value<uint64_t>();
   c.flow.time = r.value<double>();
@@ -121,10 +129,67 @@ Checkpoint read_checkpoint(const std::string& path) {
   s.magnitude_integral = r.vector<double>();
   s.change = r.vector<double>();
   c.index_points = r.vector<int>();
+  c.pieces = r.value<int>();
   if (c.index_points.size() != s.last.size())
     throw InputError(fmt::format("{}: the checkpoint's indices do not fit their points: not one of ours", path));
   if (!r.done()) throw InputError(fmt::format("{}: the checkpoint has bytes past its end: not one of ours", path));
   return c;
+}
+
+std::string checkpoint_piece_path(const std::string& path, int steps, int piece) {
+  return fmt::format("{}.{:06d}.{}", path, steps, piece);
+}
+
+
+void write_checkpoint_piece(const std::string& path, const FlowState& own) {
+  io::ByteWriter w;
+  w.bytes(kPieceMagic, sizeof kPieceMagic - 1);
+  w.value(kVersion);
+  w.value(own.steps);
+  w.value(own.time);
+  w.vector(own.points);
+  w.vector(own.velocity);
+  w.vector(own.previous);
+  w.vector(own.kinematic_pressure);
+  io::write_text(path, w.text());
+}
+
+void read_checkpoint_pieces(const std::string& path, Checkpoint& c, int points) {
+  FlowState& flow = c.flow;
+  if (c.pieces == 0) return;
+  flow.velocity.assign(points, Vec3::Zero());
+  flow.previous.assign(points, Vec3::Zero());
+  flow.kinematic_pressure.assign(points, 0.0);
+  std::vector<char> seen(points, 0);
+  for (int k = 0; k < c.pieces; ++k) {
+    const std::string piece = checkpoint_piece_path(path, flow.steps, k);
+    if (!std::filesystem::exists(piece))
+      throw InputError(fmt::format("{}: the checkpoint's piece {} is missing: run the case without --restart", path,
+                                   piece));
+    io::ByteReader r = open_checkpoint_file(piece, kPieceMagic);
+    const int steps = r.value<int>();
+    r.value<double>();
+    if (steps != flow.steps)
+      throw InputError(fmt::format("{}: a piece of step {}, the checkpoint is of step {}", piece, steps, flow.steps));
+    const std::vector<int> at = r.vector<int>();
+    const std::vector<Vec3> velocity = r.vector<Vec3>(), previous = r.vector<Vec3>();
+    const std::vector<double> pressure = r.vector<double>();
+    if (velocity.size() != at.size() || previous.size() != at.size() || pressure.size() != at.size() || !r.done())
+      throw InputError(fmt::format("{}: the piece's fields do not fit its points: not one of ours", piece));
+    for (size_t i = 0; i < at.size(); ++i) {
+      if (at[i] < 0 || at[i] >= points)
+        throw InputError(fmt::format("{}: point {} is not in the mesh of {} points: a checkpoint of another mesh",
+                                     piece, at[i], points));
+      flow.velocity[at[i]] = velocity[i];
+      flow.previous[at[i]] = previous[i];
+      flow.kinematic_pressure[at[i]] = pressure[i];
+      seen[at[i]] = 1;
+    }
+  }
+  const auto missing = std::find(seen.begin(), seen.end(), 0);
+  if (missing != seen.end())
+    throw InputError(fmt::format("{}: its pieces have no state for mesh point {}: run the case without --restart", path,
+                                 missing - seen.begin()));
 }
 
 }  // namespace vesselmesh::flow

@@ -3,7 +3,10 @@
 // (io/atomic_file.h: a checkpoint is whole or absent), checked on reading (a truncated or
 // foreign file, or one of another mesh or time step, is an InputError naming it).
 // Fields are in the mesh's numbering, so the file does not depend on how the solver numbers
-// or shares the points.
+// or shares the points. The flow's fields are in pieces beside it, one per process (its own
+// points, by mesh number: nothing gathered on one process), written before it and named by its
+// step (checkpoint_piece_path), so that a run stopped while writing them keeps the checkpoint
+// before.
 #pragma once
 
 #include "flow/navier_stokes.h"
@@ -18,7 +21,8 @@ namespace vesselmesh::flow {
 
 struct Checkpoint {
   uint64_t fingerprint = 0;  // of the mesh and the time step (run_fingerprint)
-  FlowState flow;
+  FlowState flow;  // its time, steps and capacitor pressures; its fields whole only when pieces is 0
+  int pieces = 0;  // the flow's fields are in this many piece files
   int saved = 0, linear_iterations = 0;
   std::string log;  // log.csv so far
   std::vector<std::pair<double, std::string>> fluid_files, wall_files;  // the PVD collections so far
@@ -33,5 +37,13 @@ uint64_t run_fingerprint(const TetMesh& mesh, double dt);
 
 void write_checkpoint(const std::string& path, const Checkpoint& checkpoint);
 Checkpoint read_checkpoint(const std::string& path);
+
+// Piece `piece` of the flow's fields of the checkpoint `path` at step `steps`.
+std::string checkpoint_piece_path(const std::string& path, int steps, int piece);
+// A process's own points' state (FlowState::points set), atomically.
+void write_checkpoint_piece(const std::string& path, const FlowState& own);
+// The checkpoint's flow whole (`points` points): its pieces read and placed by mesh point;
+// InputError when one is missing, of another step, or holds points outside the mesh.
+void read_checkpoint_pieces(const std::string& path, Checkpoint& checkpoint, int points);
 
 }  // namespace vesselmesh::flow

@@ -854,18 +854,16 @@ void NavierStokes::set_state(const std::vector<Vec3>& velocity, double time) {
 
 FlowState NavierStokes::state() const {
   const Impl& s = *impl_;
-  FlowState out;
-  out.time = s.t;
-  out.steps = s.step_count;
-  out.capacitor_pressure = s.capacitor_pressure;
+  FlowState out = own_state();  // its fields gathered whole onto the first process
   std::vector<double> mine(7 * s.owned);
   for (int k = 0; k < s.owned; ++k) {
     for (int i = 0; i < 3; ++i) {
-      mine[7 * k + i] = s.u[k][i];
-      mine[7 * k + 3 + i] = s.u_old[k][i];
+      mine[7 * k + i] = out.velocity[k][i];
+      mine[7 * k + 3 + i] = out.previous[k][i];
     }
-    mine[7 * k + 6] = s.p[k];
+    mine[7 * k + 6] = out.kinematic_pressure[k];
   }
+  out.points.clear();
   const std::vector<double> all = s.gather_points(mine, 7);
   const size_t n = all.size() / 7;
   out.velocity.resize(n);
@@ -876,6 +874,19 @@ FlowState NavierStokes::state() const {
     out.previous[k] = Vec3(all[7 * k + 3], all[7 * k + 4], all[7 * k + 5]);
     out.kinematic_pressure[k] = all[7 * k + 6];
   }
+  return out;
+}
+
+FlowState NavierStokes::own_state() const {
+  const Impl& s = *impl_;
+  FlowState out;
+  out.time = s.t;
+  out.steps = s.step_count;
+  out.capacitor_pressure = s.capacitor_pressure;
+  out.points.assign(s.mesh_point.begin(), s.mesh_point.begin() + s.owned);
+  out.velocity.assign(s.u.begin(), s.u.begin() + s.owned);
+  out.previous.assign(s.u_old.begin(), s.u_old.begin() + s.owned);
+  out.kinematic_pressure.assign(s.p.begin(), s.p.begin() + s.owned);
   return out;
 }
 

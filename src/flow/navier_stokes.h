@@ -57,6 +57,9 @@ struct FlowState {
   std::vector<Vec3> velocity, previous;
   std::vector<double> kinematic_pressure;
   std::vector<double> capacitor_pressure;  // per boundary of the case: an rcr end's P_c (Pa), else 0
+  // The mesh points the fields are of, one per entry (own_state()); empty: every point, in the
+  // mesh's order (state()).
+  std::vector<int> points;
 };
 
 // How the points are shared among the MPI processes: per process its points (owned rows / 4),
@@ -117,6 +120,8 @@ class NavierStokes {
   // process given the whole; InputError when its sizes do not fit).
   FlowState state() const;
   void restore(const FlowState& state);
+  // The state of this process's own points (`points` their mesh numbers; nothing gathered).
+  FlowState own_state() const;
 
   double time() const;
   int steps() const;

@@ -17,6 +17,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
@@ -538,12 +539,18 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   // Checkpoints: the state to go on from, in the mesh's numbering.
   const std::string checkpoint_path = output_dir + "/checkpoint.bin";
   const auto write_checkpoint_now = [&]() {
-    FlowState flow = ns.state();  // every process takes part; the first has it whole
-    auto gathered = gather_indices(indices.state(), wall.mesh_point);
+    // Each process's own points in a piece of its own, then (all written) the first writes the
+    // checkpoint and removes the pieces of the one before.
+    FlowState own = ns.own_state();
+    write_checkpoint_piece(checkpoint_piece_path(checkpoint_path, own.steps, rank), own);
+    auto gathered = gather_indices(indices.state(), wall.mesh_point);  // on the first once every piece is written
     if (!writer) return;
     Checkpoint c;
     c.fingerprint = fingerprint;
-    c.flow = std::move(flow);
+    c.flow.time = own.time;
+    c.flow.steps = own.steps;
+    c.flow.capacitor_pressure = own.capacitor_pressure;
+    c.pieces = ranks;
     c.saved = summary.saved;
     c.linear_iterations = summary.linear_iterations;
     c.log = log;
@@ -552,13 +559,24 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     c.indices = std::move(gathered.first);
     c.index_points = std::move(gathered.second);
     write_checkpoint(checkpoint_path, c);
+    // The pieces of the checkpoints before (CHECKPOINT.SSSSSS.K of another step SSSSSS).
+    const std::string name = std::filesystem::path(checkpoint_path).filename().string() + ".";
+    const std::string current = fmt::format("{}{:06d}.", name, c.flow.steps);
+    for (const auto& entry : std::filesystem::directory_iterator(output_dir)) {
+      const std::string file = entry.path().filename().string();
+      const bool piece = file.starts_with(name) && file.size() > name.size() + 7 && file[name.size() + 6] == '.' &&
+                         std::all_of(file.begin() + static_cast<std::ptrdiff_t>(name.size()), file.end(),
+                                     [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)) || ch == '.'; });
+      if (piece && !file.starts_with(current)) std::filesystem::remove(entry.path());
+    }
   };
   int first_step = 0;
   if (restart) {
     if (fc.steady) throw InputError(fmt::format("{}: --restart: a steady case has no time steps to go on from", fc.path));
     if (!std::filesystem::exists(checkpoint_path))
       throw InputError(fmt::format("{}: no checkpoint to restart from; run the case without --restart", checkpoint_path));
-    const Checkpoint c = read_checkpoint(checkpoint_path);
+    Checkpoint c = read_checkpoint(checkpoint_path);
+    read_checkpoint_pieces(checkpoint_path, c, mesh_points);
     if (any_process(writer && c.fingerprint != fingerprint))
       throw InputError(fmt::format("{}: the checkpoint is of another mesh or time step than {}'s; run the case without "
                                    "--restart (or into another folder)",

@@ -40,6 +40,10 @@ GmshSession::~GmshSession() {
   try {
     gmsh::logger::stop();
     gmsh::clear();
+    if (finalize_) {
+      gmsh::finalize();
+      g_initialized = false;
+    }
   } catch (...) {
   }
 }

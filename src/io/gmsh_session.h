@@ -22,9 +22,13 @@ class GmshSession {
   ~GmshSession();
   GmshSession(const GmshSession&) = delete;
   GmshSession& operator=(const GmshSession&) = delete;
+  // Gmsh finalized when the session ends (not only its model cleared): what it keeps between
+  // sessions given back, the next session starting it afresh.
+  void finalize_at_end() { finalize_ = true; }
 
  private:
   std::unique_lock<std::mutex> lock_;
+  bool finalize_ = false;
 };
 
 // Gmsh's options and size callback outlive a session: the options set through this are put

@@ -802,6 +802,25 @@ TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
             1e-9);  // its first save was the shorter run's end
   EXPECT_LT(relative_difference(point_data("np2", "indices.pvtp", "tawss"), point_data("resumed", "indices.pvtp", "tawss")),
             1e-9);  // the indices' sums went on from the checkpoint
+  // Bad input under mpirun: told once, by the first process, every process ending with exit 2 —
+  // a mesh that is not one (only the first reads it) and a mesh file that is missing.
+  test::write_bytes(tmp.path("broken.msh"), "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 garbage\n");
+  const auto errors = [&](const std::string& folder) {
+    const std::string err = read_text(tmp.path(folder + ".err"));
+    int told = 0;
+    for (size_t at = err.find("error:"); at != std::string::npos; at = err.find("error:", at + 1)) ++told;
+    return told;
+  };
+  const int broken = mpirun(3, "broken", " --mesh " + quote(tmp.path("broken.msh")));
+  ASSERT_TRUE(WIFEXITED(broken));
+  EXPECT_EQ(WEXITSTATUS(broken), 2) << read_text(tmp.path("broken.err"));
+  EXPECT_EQ(errors("broken"), 1) << read_text(tmp.path("broken.err"));
+  EXPECT_NE(read_text(tmp.path("broken.err")).find("broken.msh"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(tmp.path("broken/summary.json")));
+  const int missing = mpirun(3, "missing", " --mesh " + quote(tmp.path("missing.msh")));
+  ASSERT_TRUE(WIFEXITED(missing));
+  EXPECT_EQ(WEXITSTATUS(missing), 2);
+  EXPECT_EQ(errors("missing"), 1) << read_text(tmp.path("missing.err"));
 }
 
 // `windkessel` (issue 32): on a Y bifurcation with daughters of radii 2.4 and 1.8 mm, the outlets'

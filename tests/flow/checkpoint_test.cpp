@@ -106,6 +106,58 @@ TEST(Checkpoint, ReadsBackWhatItWroteAndRefusesDamagedFiles) {
   for (const std::string& name : folder.files()) EXPECT_EQ(name.find(".tmp"), std::string::npos) << name;
 }
 
+// The flow's fields in pieces (one per process, its own points by mesh number): placed back
+// whole; a missing piece, one of another step or a point outside the mesh is an InputError.
+TEST(Checkpoint, PiecesMakeTheFlowWhole) {
+  const test::TemporaryFolder folder;
+  const std::string path = folder.path("checkpoint.bin");
+  Checkpoint c = sample_checkpoint();
+  const FlowState whole = c.flow;
+  c.pieces = 2;  // the fields in the pieces only
+  c.flow.velocity.clear();
+  c.flow.previous.clear();
+  c.flow.kinematic_pressure.clear();
+  write_checkpoint(path, c);
+  const auto piece = [&](std::vector<int> points) {
+    FlowState p;
+    p.steps = whole.steps;
+    p.time = whole.time;
+    for (int m : points) {
+      p.velocity.push_back(whole.velocity[m]);
+      p.previous.push_back(whole.previous[m]);
+      p.kinematic_pressure.push_back(whole.kinematic_pressure[m]);
+    }
+    p.points = std::move(points);
+    return p;
+  };
+  write_checkpoint_piece(checkpoint_piece_path(path, whole.steps, 0), piece({1}));
+  write_checkpoint_piece(checkpoint_piece_path(path, whole.steps, 1), piece({0}));
+  Checkpoint r = read_checkpoint(path);
+  EXPECT_EQ(r.pieces, 2);
+  EXPECT_TRUE(r.flow.velocity.empty());
+  read_checkpoint_pieces(path, r, 2);
+  EXPECT_EQ(r.flow.velocity, whole.velocity);
+  EXPECT_EQ(r.flow.previous, whole.previous);
+  EXPECT_EQ(r.flow.kinematic_pressure, whole.kinematic_pressure);
+  const auto refused = [&](int points) {
+    Checkpoint again = read_checkpoint(path);
+    try {
+      read_checkpoint_pieces(path, again, points);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(refused(1).find("not in the mesh of 1 points"), std::string::npos) << refused(1);
+  EXPECT_NE(refused(3).find("no state for mesh point 2"), std::string::npos) << refused(3);
+  FlowState other = piece({0});
+  other.steps = whole.steps + 1;
+  write_checkpoint_piece(checkpoint_piece_path(path, whole.steps, 1), other);
+  EXPECT_NE(refused(2).find("a piece of step"), std::string::npos) << refused(2);
+  std::filesystem::remove(checkpoint_piece_path(path, whole.steps, 1));
+  EXPECT_NE(refused(2).find("is missing"), std::string::npos) << refused(2);
+}
+
 // A pipe's volume mesh in `folder`/pipe.msh and a pulsatile case on it ending at `steps` steps; its
 // outlet an rcr end whose capacitor (R_d C = 4 ms, 2 steps) carries state across a restart.
 std::string pipe_case(const test::TemporaryFolder& folder, int steps, const std::string& extra = "") {

@@ -11,6 +11,7 @@
 #include "io/atomic_file.h"
 
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 
@@ -191,6 +192,66 @@ TEST(VtuVolume, ReadsBackWhatWriteVtuWrote) {
   EXPECT_THROW(read_vtu_volume(tmp.path("s.vtp")), InputError);
   test::write_bytes(tmp.path("bad.vtu"), "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid></UnstructuredGrid></VTKFile>");
   EXPECT_THROW(read_vtu_volume(tmp.path("bad.vtu")), InputError);
+}
+
+
+// Pieces joined by a .pvtp / .pvtu (as `simulate` writes them under MPI) read whole: the surface's
+// shared points merged (their data the same on both sides), the volume's pieces one after the
+// other; a parallel file naming no piece, or a missing piece, is an InputError naming it.
+TEST(VtkParallel, PiecesReadWhole) {
+  test::TemporaryFolder tmp;
+  std::filesystem::create_directories(tmp.path("pieces"));
+  // Two triangles of a square, one a piece, sharing the diagonal's points.
+  TriMesh a, b;
+  a.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}};
+  a.triangles = {{0, 1, 2}};
+  a.labels = {4};
+  b.points = {{0, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  b.triangles = {{0, 1, 2}};
+  b.labels = {4};
+  const auto height = [](const TriMesh& m) {
+    std::vector<double> h;
+    for (const Vec3& p : m.points) h.push_back(p.x() + 10 * p.y());
+    return h;
+  };
+  write_vtp(tmp.path("pieces/w_0.vtp"), a, {Field::scalar("h", height(a))});
+  write_vtp(tmp.path("pieces/w_1.vtp"), b, {Field::scalar("h", height(b))});
+  write_parallel_file(tmp.path("w.pvtp"), VtkFormat::vtp, {"pieces/w_0.vtp", "pieces/w_1.vtp"},
+                      {Field::scalar("h", {})});
+  EXPECT_NE(io::read_file(tmp.path("w.pvtp")).find("<PPolyData"), std::string::npos);
+  const SurfaceData whole = read_vtk_surface(tmp.path("w.pvtp"), VtkFormat::vtp);
+  ASSERT_EQ(whole.mesh.num_points(), 4);
+  ASSERT_EQ(whole.mesh.num_triangles(), 2);
+  EXPECT_EQ(whole.mesh.labels, (std::vector<int>{4, 4}));
+  ASSERT_EQ(whole.point_data.size(), 1u);
+  for (int v = 0; v < 4; ++v)
+    EXPECT_EQ(whole.point_data[0].values[v], whole.mesh.points[v].x() + 10 * whole.mesh.points[v].y());
+
+  TetMesh t0, t1;
+  t0.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  t0.tets = {{0, 1, 2, 3}};
+  t1.points = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+  t1.tets = {{0, 2, 1, 3}};
+  write_vtu(tmp.path("pieces/f_0.vtu"), t0, {Field::scalar("p", {1, 2, 3, 4})});
+  write_vtu(tmp.path("pieces/f_1.vtu"), t1, {Field::scalar("p", {2, 3, 4, 5})});
+  write_parallel_file(tmp.path("f.pvtu"), VtkFormat::vtu, {"pieces/f_0.vtu", "pieces/f_1.vtu"},
+                      {Field::scalar("p", {})});
+  std::vector<Field> fields;
+  const TetMesh volume = read_vtu_volume(tmp.path("f.pvtu"), &fields);
+  EXPECT_EQ(volume.num_points(), 8);
+  EXPECT_EQ(volume.tets, (std::vector<Tet>{{0, 1, 2, 3}, {4, 6, 5, 7}}));
+  ASSERT_EQ(fields.size(), 1u);
+  EXPECT_EQ(fields[0].values, (std::vector<double>{1, 2, 3, 4, 2, 3, 4, 5}));
+
+  test::write_bytes(tmp.path("none.pvtu"), "<VTKFile type=\"PUnstructuredGrid\"><PUnstructuredGrid></PUnstructuredGrid></VTKFile>");
+  EXPECT_THROW(read_vtu_volume(tmp.path("none.pvtu")), InputError);
+  std::filesystem::remove(tmp.path("pieces/f_1.vtu"));
+  try {
+    read_vtu_volume(tmp.path("f.pvtu"));
+    ADD_FAILURE() << "a missing piece was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("f_1.vtu"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

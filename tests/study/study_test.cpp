@@ -370,8 +370,10 @@ TEST(Study, AStoppedFlowGoesOnFromItsCheckpoint) {
   fc.mesh = tmp.path("out/uniform/volume.msh");
   fc.end = 0.004;
   flow::simulate(fc, tmp.path("half"));
-  std::filesystem::copy_file(tmp.path("half/checkpoint.bin"), tmp.path("out/uniform/flow/checkpoint.bin"),
-                             std::filesystem::copy_options::overwrite_existing);
+  for (const auto& entry : std::filesystem::directory_iterator(tmp.path("half")))  // the checkpoint and its pieces
+    if (entry.path().filename().string().starts_with("checkpoint.bin"))
+      std::filesystem::copy_file(entry.path(), tmp.path("out/uniform/flow/" + entry.path().filename().string()),
+                                 std::filesystem::copy_options::overwrite_existing);
   std::filesystem::remove(tmp.path("out/uniform/stamp.json"));
 
   struct Said : Reporter {
