@@ -154,42 +154,46 @@ void write_checkpoint_piece(const std::string& path, const FlowState& own) {
   io::write_text(path, w.text());
 }
 
-void read_checkpoint_pieces(const std::string& path, Checkpoint& c, int points) {
-  FlowState& flow = c.flow;
-  if (c.pieces == 0) return;
-  flow.velocity.assign(points, Vec3::Zero());
-  flow.previous.assign(points, Vec3::Zero());
-  flow.kinematic_pressure.assign(points, 0.0);
-  std::vector<char> seen(points, 0);
+FlowState read_checkpoint_pieces(const std::string& path, const Checkpoint& c, const std::vector<int>& wanted,
+                                 int mesh_points) {
+  FlowState flow;
+  flow.time = c.flow.time;
+  flow.steps = c.flow.steps;
+  flow.capacitor_pressure = c.flow.capacitor_pressure;
+  std::vector<char> found(wanted.size(), 0);
   for (int k = 0; k < c.pieces; ++k) {
-    const std::string piece = checkpoint_piece_path(path, flow.steps, k);
+    const std::string piece = checkpoint_piece_path(path, c.flow.steps, k);
     if (!std::filesystem::exists(piece))
       throw InputError(fmt::format("{}: the checkpoint's piece {} is missing: run the case without --restart", path,
                                    piece));
     io::ByteReader r = open_checkpoint_file(piece, kPieceMagic);
     const int steps = r.value<int>();
     r.value<double>();
-    if (steps != flow.steps)
-      throw InputError(fmt::format("{}: a piece of step {}, the checkpoint is of step {}", piece, steps, flow.steps));
+    if (steps != c.flow.steps)
+      throw InputError(fmt::format("{}: a piece of step {}, the checkpoint is of step {}", piece, steps, c.flow.steps));
     const std::vector<int> at = r.vector<int>();
     const std::vector<Vec3> velocity = r.vector<Vec3>(), previous = r.vector<Vec3>();
     const std::vector<double> pressure = r.vector<double>();
     if (velocity.size() != at.size() || previous.size() != at.size() || pressure.size() != at.size() || !r.done())
       throw InputError(fmt::format("{}: the piece's fields do not fit its points: not one of ours", piece));
     for (size_t i = 0; i < at.size(); ++i) {
-      if (at[i] < 0 || at[i] >= points)
+      if (at[i] < 0 || at[i] >= mesh_points)
         throw InputError(fmt::format("{}: point {} is not in the mesh of {} points: a checkpoint of another mesh",
-                                     piece, at[i], points));
-      flow.velocity[at[i]] = velocity[i];
-      flow.previous[at[i]] = previous[i];
-      flow.kinematic_pressure[at[i]] = pressure[i];
-      seen[at[i]] = 1;
+                                     piece, at[i], mesh_points));
+      const auto it = std::lower_bound(wanted.begin(), wanted.end(), at[i]);
+      if (it == wanted.end() || *it != at[i] || found[it - wanted.begin()]) continue;
+      found[it - wanted.begin()] = 1;
+      flow.points.push_back(at[i]);
+      flow.velocity.push_back(velocity[i]);
+      flow.previous.push_back(previous[i]);
+      flow.kinematic_pressure.push_back(pressure[i]);
     }
   }
-  const auto missing = std::find(seen.begin(), seen.end(), 0);
-  if (missing != seen.end())
+  const auto missing = std::find(found.begin(), found.end(), 0);
+  if (missing != found.end())
     throw InputError(fmt::format("{}: its pieces have no state for mesh point {}: run the case without --restart", path,
-                                 missing - seen.begin()));
+                                 wanted[missing - found.begin()]));
+  return flow;
 }
 
 }  // namespace vesselmesh::flow

@@ -42,8 +42,11 @@ Checkpoint read_checkpoint(const std::string& path);
 std::string checkpoint_piece_path(const std::string& path, int steps, int piece);
 // A process's own points' state (FlowState::points set), atomically.
 void write_checkpoint_piece(const std::string& path, const FlowState& own);
-// The checkpoint's flow whole (`points` points): its pieces read and placed by mesh point;
-// InputError when one is missing, of another step, or holds points outside the mesh.
-void read_checkpoint_pieces(const std::string& path, Checkpoint& checkpoint, int points);
+// The checkpoint's flow at the mesh points `wanted` (sorted; a process's local points), from its
+// pieces, `points` set (read one piece at a time, each process keeping what it wants); InputError
+// when a piece is missing or of another step, holds a point outside the mesh of `mesh_points`, or
+// a wanted point is in none.
+FlowState read_checkpoint_pieces(const std::string& path, const Checkpoint& checkpoint,
+                                 const std::vector<int>& wanted, int mesh_points);
 
 }  // namespace vesselmesh::flow

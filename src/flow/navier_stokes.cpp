@@ -890,19 +890,37 @@ FlowState NavierStokes::own_state() const {
   return out;
 }
 
+const std::vector<int>& NavierStokes::local_points() const { return impl_->mesh_point; }
+
 void NavierStokes::restore(const FlowState& state) {
   Impl& s = *impl_;
-  const size_t n = s.total_points;
+  const size_t n = state.points.empty() ? static_cast<size_t>(s.total_points) : state.points.size();
   if (state.velocity.size() != n || state.previous.size() != n || state.kinematic_pressure.size() != n)
     throw InputError(fmt::format("the saved state has {} points, the mesh {}", state.velocity.size(), n));
   if (state.capacitor_pressure.size() != s.boundaries.size())
     throw InputError(fmt::format("the saved state has {} boundaries, the case {}", state.capacitor_pressure.size(),
                                  s.boundaries.size()));
+  // Per local point its entry of the state.
+  std::vector<int> entry(s.n());
+  if (state.points.empty()) {
+    entry = s.mesh_point;
+  } else {
+    std::vector<int> order(n);
+    for (size_t k = 0; k < n; ++k) order[k] = static_cast<int>(k);
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return state.points[a] < state.points[b]; });
+    for (int k = 0; k < s.n(); ++k) {
+      const auto it = std::lower_bound(order.begin(), order.end(), s.mesh_point[k],
+                                       [&](int e, int m) { return state.points[e] < m; });
+      if (it == order.end() || state.points[*it] != s.mesh_point[k])
+        throw InputError(fmt::format("the saved state has no values at mesh point {}", s.mesh_point[k]));
+      entry[k] = *it;
+    }
+  }
   s.capacitor_pressure = state.capacitor_pressure;
   for (int k = 0; k < s.n(); ++k) {
-    s.u[k] = state.velocity[s.mesh_point[k]];
-    s.u_old[k] = state.previous[s.mesh_point[k]];
-    s.p[k] = state.kinematic_pressure[s.mesh_point[k]];
+    s.u[k] = state.velocity[entry[k]];
+    s.u_old[k] = state.previous[entry[k]];
+    s.p[k] = state.kinematic_pressure[entry[k]];
   }
   s.t = state.time;
   s.step_count = state.steps;

@@ -116,10 +116,13 @@ class NavierStokes {
 
   // Starts the time stepping from this velocity (m/s per point) at this time (s).
   void set_state(const std::vector<Vec3>& velocity, double time);
-  // The whole state (its fields on the first process), and the stepping resumed from one (every
-  // process given the whole; InputError when its sizes do not fit).
+  // The whole state (its fields on the first process), and the stepping resumed from one: whole
+  // (`points` empty) or by mesh point, holding at least this process's local points
+  // (local_points()); InputError when its sizes do not fit or a local point is missing.
   FlowState state() const;
   void restore(const FlowState& state);
+  // The mesh numbers of this process's points (its own, then its ghosts).
+  const std::vector<int>& local_points() const;
   // The state of this process's own points (`points` their mesh numbers; nothing gathered).
   FlowState own_state() const;
 

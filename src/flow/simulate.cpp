@@ -576,7 +576,11 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     if (!std::filesystem::exists(checkpoint_path))
       throw InputError(fmt::format("{}: no checkpoint to restart from; run the case without --restart", checkpoint_path));
     Checkpoint c = read_checkpoint(checkpoint_path);
-    read_checkpoint_pieces(checkpoint_path, c, mesh_points);
+    if (c.pieces > 0) {  // each process keeps its own points' state as it reads the pieces
+      std::vector<int> wanted = ns.local_points();
+      std::sort(wanted.begin(), wanted.end());
+      c.flow = read_checkpoint_pieces(checkpoint_path, c, wanted, mesh_points);
+    }
     if (any_process(writer && c.fingerprint != fingerprint))
       throw InputError(fmt::format("{}: the checkpoint is of another mesh or time step than {}'s; run the case without "
                                    "--restart (or into another folder)",

@@ -132,30 +132,35 @@ TEST(Checkpoint, PiecesMakeTheFlowWhole) {
   };
   write_checkpoint_piece(checkpoint_piece_path(path, whole.steps, 0), piece({1}));
   write_checkpoint_piece(checkpoint_piece_path(path, whole.steps, 1), piece({0}));
-  Checkpoint r = read_checkpoint(path);
+  const Checkpoint r = read_checkpoint(path);
   EXPECT_EQ(r.pieces, 2);
   EXPECT_TRUE(r.flow.velocity.empty());
-  read_checkpoint_pieces(path, r, 2);
-  EXPECT_EQ(r.flow.velocity, whole.velocity);
-  EXPECT_EQ(r.flow.previous, whole.previous);
-  EXPECT_EQ(r.flow.kinematic_pressure, whole.kinematic_pressure);
-  const auto refused = [&](int points) {
-    Checkpoint again = read_checkpoint(path);
+  const FlowState both = read_checkpoint_pieces(path, r, {0, 1}, 2);
+  EXPECT_EQ(both.points, (std::vector<int>{1, 0}));  // as the pieces hold them
+  EXPECT_EQ(both.velocity, (std::vector<Vec3>{whole.velocity[1], whole.velocity[0]}));
+  EXPECT_EQ(both.previous, (std::vector<Vec3>{whole.previous[1], whole.previous[0]}));
+  EXPECT_EQ(both.kinematic_pressure, (std::vector<double>{whole.kinematic_pressure[1], whole.kinematic_pressure[0]}));
+  EXPECT_EQ(both.steps, whole.steps);
+  EXPECT_EQ(both.capacitor_pressure, whole.capacitor_pressure);
+  const FlowState one = read_checkpoint_pieces(path, r, {0}, 2);  // a process keeps its own
+  EXPECT_EQ(one.points, (std::vector<int>{0}));
+  EXPECT_EQ(one.velocity, (std::vector<Vec3>{whole.velocity[0]}));
+  const auto refused = [&](std::vector<int> wanted, int points) {
     try {
-      read_checkpoint_pieces(path, again, points);
+      read_checkpoint_pieces(path, read_checkpoint(path), wanted, points);
     } catch (const InputError& e) {
       return std::string(e.what());
     }
     return std::string();
   };
-  EXPECT_NE(refused(1).find("not in the mesh of 1 points"), std::string::npos) << refused(1);
-  EXPECT_NE(refused(3).find("no state for mesh point 2"), std::string::npos) << refused(3);
+  EXPECT_NE(refused({0}, 1).find("not in the mesh of 1 points"), std::string::npos) << refused({0}, 1);
+  EXPECT_NE(refused({0, 2}, 3).find("no state for mesh point 2"), std::string::npos) << refused({0, 2}, 3);
   FlowState other = piece({0});
   other.steps = whole.steps + 1;
   write_checkpoint_piece(checkpoint_piece_path(path, whole.steps, 1), other);
-  EXPECT_NE(refused(2).find("a piece of step"), std::string::npos) << refused(2);
+  EXPECT_NE(refused({0}, 2).find("a piece of step"), std::string::npos) << refused({0}, 2);
   std::filesystem::remove(checkpoint_piece_path(path, whole.steps, 1));
-  EXPECT_NE(refused(2).find("is missing"), std::string::npos) << refused(2);
+  EXPECT_NE(refused({0}, 2).find("is missing"), std::string::npos) << refused({0}, 2);
 }
 
 // A pipe's volume mesh in `folder`/pipe.msh and a pulsatile case on it ending at `steps` steps; its
