@@ -65,6 +65,13 @@ SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::ve
   return petsc_calls().solve_assembled(*impl_->inside, rhs, x);
 }
 
+void LinearSolver::set_residual_floor(double relative) { petsc_calls().set_residual_floor(*impl_->inside, relative); }
+void LinearSolver::scale_tolerance(double factor) { petsc_calls().scale_tolerance(*impl_->inside, factor); }
+
+double LinearSolver::relative_residual(const std::vector<double>& rhs, const std::vector<double>& x) {
+  return petsc_calls().relative_residual(*impl_->inside, rhs, x);
+}
+
 SolveStats LinearSolver::solve_assembled_direct(const std::vector<double>& rhs, std::vector<double>& x) {
   return petsc_calls().solve_assembled_direct(*impl_->inside, rhs, x);
 }

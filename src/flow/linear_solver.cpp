@@ -201,6 +201,9 @@ struct LinearSolver::Impl {
   bool reuse = false;
   int built_iterations = -1;  // iterations of the last solve that built the preconditioner; -1: build next
   int last_iterations = 0;
+  double residual_floor = 0.0;  // set_residual_floor's, times ||b||, is the least absolute tolerance
+  double tolerance_factor = 1.0;  // scale_tolerance's
+  double user_rtol = -1.0, user_abstol = -1.0;  // the options' tolerances (-1: not read yet)
 
   // The solution's own rows into x, and under MPI its ghost rows from the processes owning them.
   void copy_out(std::vector<double>& x) {
@@ -433,6 +436,23 @@ SolveStats LinearSolver::solve_assembled_direct(const std::vector<double>& rhs, 
   return stats;
 }
 
+double LinearSolver::relative_residual(const std::vector<double>& rhs, const std::vector<double>& x) {
+  Impl& s = *impl_;
+  const int n = s.pattern.rows;
+  VM_CHECK(!s.assembling.own, "relative_residual before end_assembly");
+  VM_CHECK(static_cast<int>(rhs.size()) == n && x.size() >= static_cast<size_t>(n), "vector sizes");
+  copy_in(s.rhs, s.solution, rhs, x, n);
+  Vec r = nullptr;
+  check(VecDuplicate(s.rhs, &r), "VecDuplicate");
+  check(MatMult(s.matrix, s.solution, r), "MatMult");
+  check(VecAXPY(r, -1.0, s.rhs), "VecAXPY");
+  PetscReal residual = 0.0, scale = 0.0;
+  check(VecNorm(r, NORM_2, &residual), "VecNorm");
+  check(VecNorm(s.rhs, NORM_2, &scale), "VecNorm");
+  VecDestroy(&r);
+  return scale > 0.0 ? residual / scale : residual;
+}
+
 SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::vector<double>& x) {
   Impl& s = *impl_;
   const int n = s.pattern.rows;
@@ -450,6 +470,16 @@ SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::ve
   PetscReal rtol = 0, abstol = 0, dtol = 0;
   PetscInt max_it = 0;
   check(KSPGetTolerances(s.ksp, &rtol, &abstol, &dtol, &max_it), "KSPGetTolerances");
+  if (s.user_abstol < 0.0) s.user_abstol = abstol, s.user_rtol = rtol;
+  if (s.residual_floor > 0.0 || s.tolerance_factor != 1.0) {
+    rtol = s.user_rtol * s.tolerance_factor;
+    if (s.residual_floor > 0.0) {  // done at once when the residual is already under the floor
+      PetscReal b = 0.0;
+      check(VecNorm(s.rhs, NORM_2, &b), "VecNorm");
+      abstol = std::max<PetscReal>(s.user_abstol, s.residual_floor * b);
+    }
+    check(KSPSetTolerances(s.ksp, rtol, abstol, dtol, max_it), "KSPSetTolerances");
+  }
   check(KSPSetReusePreconditioner(s.ksp, reuse ? PETSC_TRUE : PETSC_FALSE), "KSPSetReusePreconditioner");
   if (reuse)
     check(KSPSetTolerances(s.ksp, rtol, abstol, dtol, std::min<PetscInt>(max_it, 2 * reuse_limit)), "KSPSetTolerances");
@@ -490,6 +520,9 @@ SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::ve
 }
 
 void LinearSolver::reuse_preconditioner(bool on) { impl_->reuse = on; }
+
+void LinearSolver::set_residual_floor(double relative) { impl_->residual_floor = relative; }
+void LinearSolver::scale_tolerance(double factor) { impl_->tolerance_factor = factor; }
 
 void LinearSolver::rebuild_preconditioner() { impl_->built_iterations = -1; }
 

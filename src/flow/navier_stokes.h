@@ -76,6 +76,10 @@ struct StepReport {
   int solves = 0;
   double max_cfl = 0.0;  // max |u| dt / h over the elements (h: the element's least height)
   double change = 0.0;   // relative velocity change of the last (Picard) iteration
+  // Steady solves: the steady equations' relative residual at the answer, ||R(u)|| / ||b|| (the
+  // system assembled at u, times u, less its right-hand side; 2-norms over the unknowns); -1 when
+  // not computed (time steps).
+  double residual = -1.0;
   double seconds = 0.0, assembly_seconds = 0.0, solve_seconds = 0.0;
   std::string solver_reason;
 };

@@ -29,6 +29,11 @@ extern "C" __attribute__((visibility("default"))) const vesselmesh::flow::PetscC
       [](LinearSolver& solver, const std::vector<double>& rhs, std::vector<double>& x) {
         return solver.solve_assembled_direct(rhs, x);
       },
+      [](LinearSolver& solver, const std::vector<double>& rhs, const std::vector<double>& x) {
+        return solver.relative_residual(rhs, x);
+      },
+      [](LinearSolver& solver, double relative) { solver.set_residual_floor(relative); },
+      [](LinearSolver& solver, double factor) { solver.scale_tolerance(factor); },
       [](LinearSolver& solver, bool on) { solver.reuse_preconditioner(on); },
       [](LinearSolver& solver) { solver.rebuild_preconditioner(); },
       [](const LinearSolver& solver) { return solver.description(); },

@@ -13,7 +13,7 @@ inline constexpr const char* kPetscModuleFile = "libvesselmesh-petsc.so";
 
 // The module's entry points: a LinearSolver made, used and destroyed inside the module; `layout`
 // first, as in io/gmsh_module.h (raise it when this table or a type it passes changes).
-inline constexpr int kPetscCallsLayout = 8;
+inline constexpr int kPetscCallsLayout = 9;
 struct PetscCalls {
   int layout;
   int (*process_count)();
@@ -36,6 +36,9 @@ struct PetscCalls {
   void (*end_assembly)(LinearSolver& solver);
   SolveStats (*solve_assembled)(LinearSolver& solver, const std::vector<double>& rhs, std::vector<double>& x);
   SolveStats (*solve_assembled_direct)(LinearSolver& solver, const std::vector<double>& rhs, std::vector<double>& x);
+  double (*relative_residual)(LinearSolver& solver, const std::vector<double>& rhs, const std::vector<double>& x);
+  void (*set_residual_floor)(LinearSolver& solver, double relative);
+  void (*scale_tolerance)(LinearSolver& solver, double factor);
   void (*reuse_preconditioner)(LinearSolver& solver, bool on);
   void (*rebuild_preconditioner)(LinearSolver& solver);
   std::string (*description)(const LinearSolver& solver);

@@ -429,6 +429,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
       j["ends"] = ends;  // at the last step
     }
     j["steady"] = fc.steady;
+    if (fc.steady && summary.steady_residual >= 0.0) j["steady_residual"] = summary.steady_residual;
     j["wss_method"] = fc.wss_method;
     if (!fc.steady) j["initial"] = fc.stokes_start ? "stokes" : "rest";
     if (fc.period > 0.0) j["period"] = fc.period;
@@ -618,6 +619,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   try {
     if (fc.steady) {
       const StepReport r = ns.solve_steady();
+      summary.steady_residual = r.residual;
       summary.steps = r.step;
       summary.linear_iterations = r.linear_iterations;
       log_step(r);
