@@ -9,6 +9,9 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
+#include <thread>
+
 namespace vesselmesh::cli {
 namespace {
 
@@ -23,7 +26,8 @@ int run(const Options& options, bool first) {
   TerminalReporter reporter(options.common.quiet || !first);
   flow::FlowCase fc = flow::read_case(options.case_file);
   if (!options.mesh.empty()) fc.mesh = options.mesh;
-  const flow::SimulationSummary s = flow::simulate(fc, options.output, options.petsc_options, reporter, options.restart);
+  const flow::SimulationSummary s =
+      flow::simulate(fc, options.output, options.petsc_options, reporter, options.restart);
   if (s.status == "stopped") return 128 + s.signal;
   if (!first) return 0;
   reporter.info(fmt::format("{} {} steps, {} dofs, {} linear iterations, {:.3g} s per step, {:.1f} s in all; "
@@ -79,20 +83,24 @@ Command add_simulate_command(CLI::App& parent) {
             const bool first = flow::process_rank() == 0;  // under mpirun, the first process speaks
             if (flow::process_count() == 1) return run(*o, first);
             // Under mpirun an input, option or computation error is raised on every process alike
-            // (the mesh's, from the first): the first tells it, the others end quietly with its code.
-            // Any other failure may be on one process while the others wait on it: it is told with
-            // the process's rank and every process ends at once.
+            // (the mesh's, from the first): the first tells it at once, the others end with its code
+            // half a second later (mpirun ends every process once one has ended with an error: the
+            // first's message would race with it; no collective wait, which an error raised on
+            // one process alone would hang). Any other failure may be on one process while the
+            // others wait on it: it is told with the process's rank and every process ends at once.
+            const auto alike = [&](const std::exception& e, int code) {
+              if (first) fmt::print(stderr, "vesselmesh simulate: error: {}\n", e.what());
+              else std::this_thread::sleep_for(std::chrono::milliseconds(500));
+              return code;
+            };
             try {
               return run(*o, first);
-            } catch (const InputError&) {
-              if (first) throw;
-              return 2;
-            } catch (const OptionError&) {
-              if (first) throw;
-              return 2;
-            } catch (const ComputationError&) {
-              if (first) throw;
-              return 1;
+            } catch (const InputError& e) {
+              return alike(e, 2);
+            } catch (const OptionError& e) {
+              return alike(e, 2);
+            } catch (const ComputationError& e) {
+              return alike(e, 1);
             } catch (const std::exception& e) {
               fmt::print(stderr, "vesselmesh simulate: internal error on process {} of {}: {}\n", flow::process_rank(),
                          flow::process_count(), e.what());

@@ -145,7 +145,8 @@ Command add_wss_command(CLI::App& parent) {
   app->add_option("--point", o->points, "NAME:x,y,z — wall shear stress at the nearest wall location. Repeatable");
   app->add_option("--indices", o->indices,
                   "START:END (s): TAWSS, OSI, RRT, TWSSG from the saved frames in that window, to OUT/indices.vtp "
-                  "('simulate' already wrote RESULTS/indices.vtp, indices.pvtp under mpirun, from every step of the last period)");
+                  "('simulate' already wrote RESULTS/indices.vtp, indices.pvtp under mpirun, from every step of the last "
+                  "period)");
   add_common_options(*app, o->common);
   return {app, [o] {
             TerminalReporter reporter(o->common.quiet);

@@ -7,8 +7,6 @@
 
 #include <fmt/format.h>
 
-#include <malloc.h>
-
 #include <algorithm>
 #include <new>
 
@@ -30,10 +28,13 @@ struct MeshSplitter::Impl {
   // The wall: its tags, per global point its cells (CSR).
   std::vector<int> wall_tags;
   std::vector<int> point_cell_start, point_cell_list;
-  bool is_wall(int f) const { return std::find(wall_tags.begin(), wall_tags.end(), boundary_tags[f]) != wall_tags.end(); }
+  bool is_wall(int f) const {
+    return std::find(wall_tags.begin(), wall_tags.end(), boundary_tags[f]) != wall_tags.end();
+  }
 
   int owner(int g) const {
-    return static_cast<int>(std::upper_bound(process_begin.begin(), process_begin.end(), g) - process_begin.begin()) - 1;
+    const auto after = std::upper_bound(process_begin.begin(), process_begin.end(), g);
+    return static_cast<int>(after - process_begin.begin()) - 1;
   }
 };
 
@@ -370,12 +371,7 @@ MeshPart distribute_mesh(const TetMesh* mesh, const std::string& path, std::exce
       scatter_from_first([&](int r) { return splitter ? pack(splitter->part(r)) : error; });
   if (failure) std::rethrow_exception(failure);
   if (rank == 0) {
-    MeshPart own = splitter->part(0);
-    splitter.reset();
-    // The heap the splitting left free given back to the system (the solver's large arrays, mapped
-    // apart, would not reuse it).
-    malloc_trim(0);
-    return own;
+    return splitter->part(0);
   }
   VM_CHECK(!mine.empty(), "a process received its mesh part");
   if (mine[0] != kPart) {

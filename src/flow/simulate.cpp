@@ -13,7 +13,6 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include <malloc.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -286,11 +285,9 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
       unread = std::current_exception();
     }
   }
-  MeshPart part = distribute_mesh(writer ? &mesh : nullptr, fc.mesh, unread, pieces ? wall_names : std::vector<std::string>{});
-  if (pieces) {  // the parts hold it now: its memory (and the reading's, left in the heap) given back
-    mesh = TetMesh{};
-    malloc_trim(0);
-  }
+  MeshPart part =
+      distribute_mesh(writer ? &mesh : nullptr, fc.mesh, unread, pieces ? wall_names : std::vector<std::string>{});
+  if (pieces) mesh = TetMesh{};  // the parts hold it now
   const double distribution_memory = peak_memory_mb();  // the first process's: the whole mesh read and split
   if (pieces)
     reporter.info(fmt::format("mesh read and split by the first process (peak memory {:.0f} MB), a part sent to "
