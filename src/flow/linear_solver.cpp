@@ -201,6 +201,9 @@ struct LinearSolver::Impl {
   bool reuse = false;
   int built_iterations = -1;  // iterations of the last solve that built the preconditioner; -1: build next
   int last_iterations = 0;
+  // The assembled system's right-hand side and x's own rows into PETSc's vectors, checked: the
+  // opening of every use of the assembled matrix (`what` names it).
+  void load(const std::vector<double>& b, const std::vector<double>& x, const char* what);
   double residual_floor = 0.0;  // set_residual_floor's, times ||b||, is the least absolute tolerance
   double tolerance_factor = 1.0;  // scale_tolerance's
   double user_rtol = -1.0, user_abstol = -1.0;  // the options' tolerances (-1: not read yet)
@@ -409,12 +412,18 @@ void copy_in(Vec rhs_vec, Vec solution, const std::vector<double>& rhs, const st
 
 }  // namespace
 
+void LinearSolver::Impl::load(const std::vector<double>& b, const std::vector<double>& x, const char* what) {
+  const int n = pattern.rows;
+  VM_CHECK(!assembling.own, std::string(what) + " before end_assembly");
+  VM_CHECK(static_cast<int>(b.size()) == n && x.size() >= static_cast<size_t>(n), "vector sizes");
+  copy_in(rhs, solution, b, x, n);
+}
+
 SolveStats LinearSolver::solve_assembled_direct(const std::vector<double>& rhs, std::vector<double>& x) {
   Impl& s = *impl_;
   const int n = s.pattern.rows;
-  VM_CHECK(!s.assembling.own, "solve_assembled_direct before end_assembly");
-  VM_CHECK(static_cast<int>(rhs.size()) == n && x.size() == n + s.pattern.ghost_rows.size(), "vector sizes");
-  copy_in(s.rhs, s.solution, rhs, x, n);
+  VM_CHECK(x.size() == n + s.pattern.ghost_rows.size(), "the solution's size: own and ghost rows");
+  s.load(rhs, x, "solve_assembled_direct");
   if (!s.direct) {  // kept: the next solves reuse its symbolic factorization (the same pattern)
     check(KSPCreate(s.distributed ? PETSC_COMM_WORLD : PETSC_COMM_SELF, &s.direct), "KSPCreate");
     PC pc = nullptr;
@@ -438,10 +447,7 @@ SolveStats LinearSolver::solve_assembled_direct(const std::vector<double>& rhs, 
 
 double LinearSolver::relative_residual(const std::vector<double>& rhs, const std::vector<double>& x) {
   Impl& s = *impl_;
-  const int n = s.pattern.rows;
-  VM_CHECK(!s.assembling.own, "relative_residual before end_assembly");
-  VM_CHECK(static_cast<int>(rhs.size()) == n && x.size() >= static_cast<size_t>(n), "vector sizes");
-  copy_in(s.rhs, s.solution, rhs, x, n);
+  s.load(rhs, x, "relative_residual");
   Vec r = nullptr;
   check(VecDuplicate(s.rhs, &r), "VecDuplicate");
   check(MatMult(s.matrix, s.solution, r), "MatMult");
@@ -456,9 +462,8 @@ double LinearSolver::relative_residual(const std::vector<double>& rhs, const std
 SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::vector<double>& x) {
   Impl& s = *impl_;
   const int n = s.pattern.rows;
-  VM_CHECK(!s.assembling.own, "solve_assembled before end_assembly");
-  VM_CHECK(static_cast<int>(rhs.size()) == n && x.size() == n + s.pattern.ghost_rows.size(), "vector sizes");
-  copy_in(s.rhs, s.solution, rhs, x, n);
+  VM_CHECK(x.size() == n + s.pattern.ghost_rows.size(), "the solution's size: own and ghost rows");
+  s.load(rhs, x, "solve_assembled");
   PetscScalar* v = nullptr;
 
   // Reuse the preconditioner while the solve before did not take much more than the one
