@@ -181,21 +181,29 @@ void abort_all(int code) {
 }
 
 struct LinearSolver::Impl {
-  SparsePattern pattern;
+  SparsePattern pattern;  // of points; its columns handed to PETSc's matrix, not kept twice
   int block_size = 1;
+  int rows = 0;  // this process's rows of unknowns: block_size x its points
   Mat matrix = nullptr;
   Vec rhs = nullptr, solution = nullptr;
   KSP ksp = nullptr;
   KSP direct = nullptr;  // solve_assembled_direct's, made when first needed
-  IS velocity = nullptr, pressure = nullptr;
+  Mat converted = nullptr;  // a field split's matrix as one, for the direct solver (made when needed)
+  IS velocity = nullptr, pressure = nullptr;  // one matrix under a field split: the fields' rows
   bool distributed = false;
-  int nonzeros = 0;
-  // MPI: the blocks of the process's rows in its own and in the others' columns (PETSc's), and
-  // per row where its own columns begin in it and how many there are.
-  Mat own_block = nullptr, other_block = nullptr;
-  int own_nonzeros = 0;
-  std::vector<int> own_begin, own_count;
+  // A field split (MatrixValues::split): `matrix` is PETSc's nest of `blocks`, and PETSc's vectors
+  // hold a process's rows field after field (its points' first block_size - 1 components, then
+  // their last), which copy_in and copy_out translate from and to the interleaved rows.
+  bool split = false;
+  Mat blocks[2][2] = {};
+  // Per point row: its own (the process's) column points' first position in it and their count,
+  // and the counts in the rows before it (own, others').
+  std::vector<int> own_begin, own_count, own_before, other_before;
+  // The parts PETSc holds the values in: per matrix (one, or the split's four) its own and
+  // others' column blocks (the matrix itself on one process).
+  Mat own_part[2][2] = {}, other_part[2][2] = {};
   MatrixValues assembling;  // PETSc's arrays while they are out
+  bool out = false;         // between begin_assembly and end_assembly
   VecScatter ghosts = nullptr;  // MPI: the solution's ghost rows to this process
   Vec ghost_values = nullptr;
   bool reuse = false;
@@ -208,22 +216,16 @@ struct LinearSolver::Impl {
   double tolerance_factor = 1.0;  // scale_tolerance's
   double user_rtol = -1.0, user_abstol = -1.0;  // the options' tolerances (-1: not read yet)
 
-  // The solution's own rows into x, and under MPI its ghost rows from the processes owning them.
-  void copy_out(std::vector<double>& x) {
-    Impl& s = *this;
-    const int n = s.pattern.rows;
-    const PetscScalar* r = nullptr;
-    check(VecGetArrayRead(s.solution, &r), "VecGetArrayRead");
-    std::memcpy(x.data(), r, static_cast<size_t>(n) * sizeof(double));
-    check(VecRestoreArrayRead(s.solution, &r), "VecRestoreArrayRead");
-    if (s.distributed) {  // the ghosts' values from the processes that own them
-      check(VecScatterBegin(s.ghosts, s.solution, s.ghost_values, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-      check(VecScatterEnd(s.ghosts, s.solution, s.ghost_values, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-      check(VecGetArrayRead(s.ghost_values, &r), "VecGetArrayRead");
-      std::memcpy(x.data() + n, r, s.pattern.ghost_rows.size() * sizeof(double));
-      check(VecRestoreArrayRead(s.ghost_values, &r), "VecRestoreArrayRead");
-    }
+  // A process's row of unknowns (point a's component i, interleaved) in PETSc's vectors.
+  int petsc_row(int row) const {
+    if (!split) return row;
+    const int a = row / block_size, i = row % block_size, c = block_size - 1;
+    return i < c ? c * a + i : c * pattern.rows + a;
   }
+  void make_matrix(MPI_Comm comm);
+  void make_ghost_scatter();
+  // The solution's own rows into x, and under MPI its ghost rows from the processes owning them.
+  void copy_out(std::vector<double>& x);
 
   ~Impl() {
     if (ghosts) VecScatterDestroy(&ghosts);
@@ -234,9 +236,133 @@ struct LinearSolver::Impl {
     if (direct) KSPDestroy(&direct);
     if (rhs) VecDestroy(&rhs);
     if (solution) VecDestroy(&solution);
+    if (converted) MatDestroy(&converted);
     if (matrix) MatDestroy(&matrix);
+    for (auto& row : blocks)
+      for (Mat& block : row)
+        if (block) MatDestroy(&block);
   }
 };
+
+namespace {
+
+// One AIJ matrix of `comm` with `rows` x `columns` unknowns a point of this process's rows and of
+// the column points, preallocated with the point pattern's entries expanded (rows in each point
+// row, columns at each column point), its own and others' parts into `own`, `other`.
+Mat expanded_matrix(MPI_Comm comm, bool distributed, const SparsePattern& pattern, int rows, int columns, Mat& own,
+                    Mat& other) {
+  const int n = pattern.rows, first = pattern.first_row, total = pattern.total_rows();
+  std::vector<PetscInt> start(static_cast<size_t>(rows) * n + 1, 0), index;
+  index.reserve(static_cast<size_t>(rows) * columns * pattern.nonzeros());
+  for (int a = 0; a < n; ++a)
+    for (int i = 0; i < rows; ++i) {
+      for (int k = pattern.row_start[a]; k < pattern.row_start[a + 1]; ++k)
+        for (int j = 0; j < columns; ++j) index.push_back(columns * pattern.columns[k] + j);
+      start[rows * a + i + 1] = static_cast<PetscInt>(index.size());
+    }
+  Mat m = nullptr;
+  check(MatCreate(comm, &m), "MatCreate");
+  check(MatSetSizes(m, rows * n, columns * n, rows * total, columns * total), "MatSetSizes");
+  check(MatSetType(m, distributed ? MATMPIAIJ : MATSEQAIJ), "MatSetType");
+  check(MatSetBlockSizes(m, rows, columns), "MatSetBlockSizes");
+  if (distributed) {
+    check(MatMPIAIJSetPreallocationCSR(m, start.data(), index.data(), nullptr), "preallocation");
+    check(MatMPIAIJGetSeqAIJ(m, &own, &other, nullptr), "MatMPIAIJGetSeqAIJ");
+  } else {
+    check(MatSeqAIJSetPreallocationCSR(m, start.data(), index.data(), nullptr), "preallocation");
+    own = m;
+    other = nullptr;
+  }
+  // PETSc's parts are the pattern's: their entries as many as the pattern's, in its order (sorted
+  // columns, which entry_place's positions count in).
+  MatInfo info{};
+  check(MatGetInfo(own, MAT_LOCAL, &info), "MatGetInfo");
+  int own_entries = 0;
+  for (int a = 0; a < n; ++a)
+    for (int k = pattern.row_start[a]; k < pattern.row_start[a + 1]; ++k)
+      own_entries += pattern.columns[k] >= first && pattern.columns[k] < first + n;
+  VM_CHECK(static_cast<long>(info.nz_used) == static_cast<long>(rows) * columns * own_entries, "PETSc's own part");
+  if (other) {
+    check(MatGetInfo(other, MAT_LOCAL, &info), "MatGetInfo");
+    VM_CHECK(static_cast<long>(info.nz_used) == static_cast<long>(rows) * columns * (pattern.nonzeros() - own_entries),
+             "PETSc's part in the others' columns");
+  }
+  check(MatSetOption(m, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
+  return m;
+}
+
+}  // namespace
+
+void LinearSolver::Impl::make_matrix(MPI_Comm comm) {
+  const int bs = block_size, c = bs - 1;
+  if (!split) {
+    matrix = expanded_matrix(comm, distributed, pattern, bs, bs, own_part[0][0], other_part[0][0]);
+  } else {
+    for (int f = 0; f < 2; ++f)
+      for (int g = 0; g < 2; ++g)
+        blocks[f][g] = expanded_matrix(comm, distributed, pattern, f ? 1 : c, g ? 1 : c, own_part[f][g],
+                                       other_part[f][g]);
+    // The fields' rows in the whole: a process's first c x its points, then its points' last.
+    const PetscInt first = bs * pattern.first_row, n = pattern.rows;
+    IS fields[2] = {};
+    check(ISCreateStride(comm, c * n, first, 1, &fields[0]), "ISCreateStride");
+    check(ISCreateStride(comm, n, first + c * n, 1, &fields[1]), "ISCreateStride");
+    Mat list[4] = {blocks[0][0], blocks[0][1], blocks[1][0], blocks[1][1]};
+    const PetscErrorCode code = MatCreateNest(comm, 2, fields, 2, fields, list, &matrix);
+    ISDestroy(&fields[0]);
+    ISDestroy(&fields[1]);
+    check(code, "MatCreateNest");
+  }
+  // The vectors: PETSc's own kind (a nest's would be split too), in the matrix's rows.
+  if (distributed)
+    check(VecCreateMPI(comm, rows, bs * pattern.total_rows(), &solution), "VecCreateMPI");
+  else
+    check(VecCreateSeq(comm, rows, &solution), "VecCreateSeq");
+  check(VecDuplicate(solution, &rhs), "VecDuplicate");
+}
+
+void LinearSolver::Impl::make_ghost_scatter() {
+  // Every process's first point and point count: a ghost point's rows in PETSc's numbering.
+  const int ranks = process_count();
+  std::vector<int> first(ranks), count(ranks);
+  MPI_Allgather(&pattern.first_row, 1, MPI_INT, first.data(), 1, MPI_INT, PETSC_COMM_WORLD);
+  MPI_Allgather(&pattern.rows, 1, MPI_INT, count.data(), 1, MPI_INT, PETSC_COMM_WORLD);
+  const int bs = block_size, c = bs - 1;
+  std::vector<PetscInt> wanted;
+  wanted.reserve(static_cast<size_t>(bs) * pattern.ghost_rows.size());
+  for (int g : pattern.ghost_rows) {
+    const int r = static_cast<int>(std::upper_bound(first.begin(), first.end(), g) - first.begin()) - 1;
+    VM_CHECK(r >= 0 && g < first[r] + count[r], "a ghost point some process owns");
+    for (int i = 0; i < bs; ++i)
+      wanted.push_back(!split ? bs * g + i
+                       : i < c ? bs * first[r] + c * (g - first[r]) + i
+                               : bs * first[r] + c * count[r] + (g - first[r]));
+  }
+  IS is = nullptr;
+  check(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(wanted.size()), wanted.data(), PETSC_COPY_VALUES, &is),
+        "ISCreateGeneral");
+  check(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(wanted.size()), &ghost_values), "VecCreateSeq");
+  const PetscErrorCode code = VecScatterCreate(solution, is, ghost_values, nullptr, &ghosts);
+  ISDestroy(&is);
+  check(code, "VecScatterCreate (ghost rows)");
+}
+
+void LinearSolver::Impl::copy_out(std::vector<double>& x) {
+  const PetscScalar* r = nullptr;
+  check(VecGetArrayRead(solution, &r), "VecGetArrayRead");
+  if (split)
+    for (int row = 0; row < rows; ++row) x[row] = r[petsc_row(row)];
+  else
+    std::memcpy(x.data(), r, static_cast<size_t>(rows) * sizeof(double));
+  check(VecRestoreArrayRead(solution, &r), "VecRestoreArrayRead");
+  if (distributed) {  // the ghosts' values from the processes that own them
+    check(VecScatterBegin(ghosts, solution, ghost_values, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    check(VecScatterEnd(ghosts, solution, ghost_values, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+    check(VecGetArrayRead(ghost_values, &r), "VecGetArrayRead");
+    std::memcpy(x.data() + rows, r, static_cast<size_t>(block_size) * pattern.ghost_rows.size() * sizeof(double));
+    check(VecRestoreArrayRead(ghost_values, &r), "VecRestoreArrayRead");
+  }
+}
 
 LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::string& defaults,
                            const std::string& options)
@@ -245,9 +371,10 @@ LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::str
   Impl& s = *impl_;
   s.pattern = std::move(pattern);
   s.block_size = block_size;
-  const PetscInt n = s.pattern.rows;
+  const int n = s.pattern.rows;
+  s.rows = block_size * n;
   VM_CHECK(static_cast<int>(s.pattern.row_start.size()) == n + 1, "pattern row offsets");
-  VM_CHECK(block_size >= 1 && n % block_size == 0, "rows are not whole blocks");
+  VM_CHECK(block_size >= 1, "a block size");
 
   // The options database holds this solver's options only: defaults, then the caller's.
   check(PetscOptionsClear(nullptr), "clearing options");
@@ -264,59 +391,34 @@ LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::str
     throw OptionError(fmt::format("PETSc cannot read the solver options \"{}\"", options));
   }
 
-  const PetscInt N = s.pattern.total_rows();
   s.distributed = process_count() > 1;
   const MPI_Comm comm = s.distributed ? PETSC_COMM_WORLD : PETSC_COMM_SELF;
-  VM_CHECK(s.distributed || (N == n && s.pattern.first_row == 0), "one process holds every row");
-  check(MatCreate(comm, &s.matrix), "MatCreate");
-  check(MatSetSizes(s.matrix, n, n, N, N), "MatSetSizes");
-  check(MatSetType(s.matrix, s.distributed ? MATMPIAIJ : MATSEQAIJ), "MatSetType");
-  check(MatSetBlockSize(s.matrix, block_size), "MatSetBlockSize");
+  VM_CHECK(s.distributed || (s.pattern.total_rows() == n && s.pattern.first_row == 0), "one process holds every row");
   static_assert(std::is_same_v<PetscInt, int>, "PETSc with 32-bit indices, as the pattern's");
-  if (s.distributed)
-    check(MatMPIAIJSetPreallocationCSR(s.matrix, s.pattern.row_start.data(), s.pattern.columns.data(), nullptr),
-          "preallocation");
-  else
-    check(MatSeqAIJSetPreallocationCSR(s.matrix, s.pattern.row_start.data(), s.pattern.columns.data(), nullptr),
-          "preallocation");
-  if (s.distributed) {
-    // Each row's own columns (sorted, consecutive in it) and PETSc's two blocks of them.
-    const int first = s.pattern.first_row;
-    s.own_begin.resize(n);
-    s.own_count.resize(n);
-    for (int r = 0; r < n; ++r) {
-      const auto row = s.pattern.columns.begin() + s.pattern.row_start[r],
-                 end = s.pattern.columns.begin() + s.pattern.row_start[r + 1];
-      const auto begin_own = std::lower_bound(row, end, first), end_own = std::lower_bound(row, end, first + n);
-      s.own_begin[r] = static_cast<int>(begin_own - row);
-      s.own_count[r] = static_cast<int>(end_own - begin_own);
-      s.own_nonzeros += s.own_count[r];
-    }
-    check(MatMPIAIJGetSeqAIJ(s.matrix, &s.own_block, &s.other_block, nullptr), "MatMPIAIJGetSeqAIJ");
-    MatInfo own{}, other{};
-    check(MatGetInfo(s.own_block, MAT_LOCAL, &own), "MatGetInfo");
-    check(MatGetInfo(s.other_block, MAT_LOCAL, &other), "MatGetInfo");
-    VM_CHECK(static_cast<int>(own.nz_used) == s.own_nonzeros &&
-                 static_cast<int>(other.nz_used) == s.pattern.nonzeros() - s.own_nonzeros,
-             "PETSc's blocks are the pattern's");
+  // A field split of points' blocks works on the matrix's field blocks (a nest), not on copies.
+  char pc_type[64] = "";
+  PetscBool given = PETSC_FALSE;
+  check(PetscOptionsGetString(nullptr, nullptr, "-pc_type", pc_type, sizeof pc_type, &given), "-pc_type");
+  s.split = block_size > 1 && given && std::string(pc_type) == PCFIELDSPLIT;
+  s.make_matrix(comm);
+  // Each point row's own column points (sorted, consecutive in it) and the counts before it.
+  const int first = s.pattern.first_row;
+  s.own_begin.resize(n);
+  s.own_count.resize(n);
+  s.own_before.assign(n + 1, 0);
+  s.other_before.assign(n + 1, 0);
+  for (int a = 0; a < n; ++a) {
+    const auto row = s.pattern.columns.begin() + s.pattern.row_start[a],
+               end = s.pattern.columns.begin() + s.pattern.row_start[a + 1];
+    const auto begin_own = std::lower_bound(row, end, first), end_own = std::lower_bound(row, end, first + n);
+    s.own_begin[a] = static_cast<int>(begin_own - row);
+    s.own_count[a] = static_cast<int>(end_own - begin_own);
+    s.own_before[a + 1] = s.own_before[a] + s.own_count[a];
+    s.other_before[a + 1] = s.other_before[a] + static_cast<int>(end - row) - s.own_count[a];
   }
-  // The pattern's columns are the matrix's: kept once.
-  s.nonzeros = s.pattern.nonzeros();
-  std::vector<int>().swap(s.pattern.columns);
-  check(MatSetOption(s.matrix, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
-  check(MatCreateVecs(s.matrix, &s.solution, &s.rhs), "MatCreateVecs");
-  if (s.distributed) {
-    const std::vector<int>& rows = s.pattern.ghost_rows;  // PetscInt is int (asserted above)
-    IS wanted = nullptr;
-    check(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(rows.size()), rows.data(), PETSC_COPY_VALUES, &wanted),
-          "ISCreateGeneral");
-    check(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(rows.size()), &s.ghost_values), "VecCreateSeq");
-    const PetscErrorCode code = VecScatterCreate(s.solution, wanted, s.ghost_values, nullptr, &s.ghosts);
-    ISDestroy(&wanted);
-    check(code, "VecScatterCreate (ghost rows)");
-  } else {
-    VM_CHECK(s.pattern.ghost_rows.empty(), "ghost rows on one process");
-  }
+  std::vector<int>().swap(s.pattern.columns);  // PETSc's matrix has them
+  if (s.distributed) s.make_ghost_scatter();
+  else VM_CHECK(s.pattern.ghost_rows.empty(), "ghost rows on one process");
 
   check(KSPCreate(comm, &s.ksp), "KSPCreate");
   check(KSPSetOperators(s.ksp, s.matrix, s.matrix), "KSPSetOperators");
@@ -328,16 +430,24 @@ LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::str
   }
   PC pc = nullptr;
   check(KSPGetPC(s.ksp, &pc), "KSPGetPC");
-  PetscBool split = PETSC_FALSE;
-  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCFIELDSPLIT, &split), "PC type");
-  if (split && block_size > 1) {
-    std::vector<PetscInt> u, p;
-    for (PetscInt i = s.pattern.first_row; i < s.pattern.first_row + n; ++i)
-      (i % block_size == block_size - 1 ? p : u).push_back(i);
-    check(ISCreateGeneral(comm, static_cast<PetscInt>(u.size()), u.data(), PETSC_COPY_VALUES, &s.velocity), "IS");
-    check(ISCreateGeneral(comm, static_cast<PetscInt>(p.size()), p.data(), PETSC_COPY_VALUES, &s.pressure), "IS");
-    check(PCFieldSplitSetIS(pc, "u", s.velocity), "PCFieldSplitSetIS");
-    check(PCFieldSplitSetIS(pc, "p", s.pressure), "PCFieldSplitSetIS");
+  PetscBool fieldsplit = PETSC_FALSE;
+  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCFIELDSPLIT, &fieldsplit), "PC type");
+  if (fieldsplit && block_size > 1) {
+    IS fields[2] = {};
+    if (s.split) {  // the nest's own (the preconditioner then takes its blocks as they are)
+      IS columns[2] = {};
+      check(MatNestGetISs(s.matrix, fields, columns), "MatNestGetISs");
+    } else {
+      std::vector<PetscInt> u, p;
+      for (PetscInt i = block_size * first; i < block_size * (first + n); ++i)
+        (i % block_size == block_size - 1 ? p : u).push_back(i);
+      check(ISCreateGeneral(comm, static_cast<PetscInt>(u.size()), u.data(), PETSC_COPY_VALUES, &s.velocity), "IS");
+      check(ISCreateGeneral(comm, static_cast<PetscInt>(p.size()), p.data(), PETSC_COPY_VALUES, &s.pressure), "IS");
+      fields[0] = s.velocity;
+      fields[1] = s.pressure;
+    }
+    check(PCFieldSplitSetIS(pc, "u", fields[0]), "PCFieldSplitSetIS");
+    check(PCFieldSplitSetIS(pc, "p", fields[1]), "PCFieldSplitSetIS");
   }
 }
 
@@ -348,19 +458,22 @@ const SparsePattern& LinearSolver::pattern() const { return impl_->pattern; }
 SolveStats LinearSolver::solve(const std::vector<double>& values, const std::vector<double>& rhs,
                                std::vector<double>& x) {
   const Impl& s = *impl_;
-  VM_CHECK(static_cast<int>(values.size()) == s.nonzeros, "matrix values do not match the pattern");
+  const int bs = s.block_size, n = s.pattern.rows;
+  VM_CHECK(values.size() == static_cast<size_t>(bs) * bs * s.pattern.row_start[n], "matrix values do not match the pattern");
   const MatrixValues m = begin_assembly();
-  if (!s.distributed) {
-    std::copy(values.begin(), values.end(), m.own);
-  } else {
-    double *own = m.own, *other = m.other;
-    for (int r = 0; r < s.pattern.rows; ++r) {
-      const double* row = values.data() + s.pattern.row_start[r];
-      const int length = s.pattern.row_start[r + 1] - s.pattern.row_start[r];
-      other = std::copy(row, row + s.own_begin[r], other);
-      own = std::copy(row + s.own_begin[r], row + s.own_begin[r] + s.own_count[r], own);
-      other = std::copy(row + s.own_begin[r] + s.own_count[r], row + length, other);
-    }
+  const double* v = values.data();
+  for (int a = 0; a < n; ++a) {
+    const int length = s.pattern.row_start[a + 1] - s.pattern.row_start[a];
+    for (int i = 0; i < bs; ++i)
+      for (int k = 0; k < length; ++k, v += bs) {
+        const bool own = k >= s.own_begin[a] && k < s.own_begin[a] + s.own_count[a];
+        const EntryPlace at =
+            own ? entry_place(m, bs, true, s.own_before[a], s.own_count[a], i, k - s.own_begin[a])
+                : entry_place(m, bs, false, s.other_before[a], length - s.own_count[a], i,
+                              k < s.own_begin[a] ? k : k - s.own_count[a]);
+        std::copy(v, v + bs - 1, at.first);
+        *at.last = v[bs - 1];
+      }
   }
   end_assembly();
   return solve_assembled(rhs, x);
@@ -368,61 +481,67 @@ SolveStats LinearSolver::solve(const std::vector<double>& values, const std::vec
 
 MatrixValues LinearSolver::begin_assembly() {
   Impl& s = *impl_;
-  VM_CHECK(!s.assembling.own, "begin_assembly twice");
-  if (s.distributed) {
-    check(MatSeqAIJGetArray(s.own_block, &s.assembling.own), "MatSeqAIJGetArray");
-    check(MatSeqAIJGetArray(s.other_block, &s.assembling.other), "MatSeqAIJGetArray");
-    std::fill(s.assembling.own, s.assembling.own + s.own_nonzeros, 0.0);
-    std::fill(s.assembling.other, s.assembling.other + (s.nonzeros - s.own_nonzeros), 0.0);
-  } else {
-    check(MatSeqAIJGetArray(s.matrix, &s.assembling.own), "MatSeqAIJGetArray");
-    std::fill(s.assembling.own, s.assembling.own + s.nonzeros, 0.0);
-  }
-  return s.assembling;
+  VM_CHECK(!s.out, "begin_assembly twice");
+  MatrixValues& m = s.assembling;
+  m = MatrixValues{};
+  m.split = s.split;
+  for (int f = 0; f < (s.split ? 2 : 1); ++f)
+    for (int g = 0; g < (s.split ? 2 : 1); ++g) {
+      double*& own = s.split ? m.split_own[f][g] : m.own;
+      double*& other = s.split ? m.split_other[f][g] : m.other;
+      for (auto [part, values] : {std::pair{s.own_part[f][g], &own}, std::pair{s.other_part[f][g], &other}}) {
+        if (!part) continue;
+        PetscInt entries = 0;
+        check(MatSeqAIJGetArray(part, values), "MatSeqAIJGetArray");
+        MatInfo info{};
+        check(MatGetInfo(part, MAT_LOCAL, &info), "MatGetInfo");
+        entries = static_cast<PetscInt>(info.nz_used);
+        std::fill(*values, *values + entries, 0.0);
+      }
+    }
+  s.out = true;
+  return m;
 }
 
 void LinearSolver::end_assembly() {
   Impl& s = *impl_;
-  VM_CHECK(s.assembling.own, "end_assembly without begin_assembly");
-  if (s.distributed) {
-    check(MatSeqAIJRestoreArray(s.own_block, &s.assembling.own), "MatSeqAIJRestoreArray");
-    check(MatSeqAIJRestoreArray(s.other_block, &s.assembling.other), "MatSeqAIJRestoreArray");
-    // The whole matrix changed (its preconditioner and field split see it by its state): an
-    // assembly with nothing to send says so.
+  VM_CHECK(s.out, "end_assembly without begin_assembly");
+  MatrixValues& m = s.assembling;
+  for (int f = 0; f < (s.split ? 2 : 1); ++f)
+    for (int g = 0; g < (s.split ? 2 : 1); ++g) {
+      double*& own = s.split ? m.split_own[f][g] : m.own;
+      double*& other = s.split ? m.split_other[f][g] : m.other;
+      check(MatSeqAIJRestoreArray(s.own_part[f][g], &own), "MatSeqAIJRestoreArray");
+      if (s.other_part[f][g]) check(MatSeqAIJRestoreArray(s.other_part[f][g], &other), "MatSeqAIJRestoreArray");
+    }
+  // The whole matrix changed (its preconditioner and field split see it by its state): an
+  // assembly with nothing to send says so. (One matrix on one process: its state moved with its array.)
+  if (s.distributed || s.split) {
     check(MatAssemblyBegin(s.matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
     check(MatAssemblyEnd(s.matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-  } else {
-    check(MatSeqAIJRestoreArray(s.matrix, &s.assembling.own), "MatSeqAIJRestoreArray");
   }
   s.assembling = MatrixValues{};
+  s.out = false;
 }
-
-namespace {
-
-// `rhs` and the initial guess (x's own rows) into PETSc's vectors.
-void copy_in(Vec rhs_vec, Vec solution, const std::vector<double>& rhs, const std::vector<double>& x, int n) {
-  PetscScalar* v = nullptr;
-  check(VecGetArray(rhs_vec, &v), "VecGetArray");
-  std::memcpy(v, rhs.data(), rhs.size() * sizeof(double));
-  check(VecRestoreArray(rhs_vec, &v), "VecRestoreArray");
-  check(VecGetArray(solution, &v), "VecGetArray");
-  std::memcpy(v, x.data(), static_cast<size_t>(n) * sizeof(double));
-  check(VecRestoreArray(solution, &v), "VecRestoreArray");
-}
-
-}  // namespace
 
 void LinearSolver::Impl::load(const std::vector<double>& b, const std::vector<double>& x, const char* what) {
-  const int n = pattern.rows;
-  VM_CHECK(!assembling.own, std::string(what) + " before end_assembly");
-  VM_CHECK(static_cast<int>(b.size()) == n && x.size() >= static_cast<size_t>(n), "vector sizes");
-  copy_in(rhs, solution, b, x, n);
+  VM_CHECK(!out, std::string(what) + " before end_assembly");
+  VM_CHECK(static_cast<int>(b.size()) == rows && x.size() >= static_cast<size_t>(rows), "vector sizes");
+  // The right-hand side and the initial guess (x's own rows) into PETSc's vectors.
+  for (auto [vec, from] : {std::pair{rhs, b.data()}, std::pair{solution, x.data()}}) {
+    PetscScalar* v = nullptr;
+    check(VecGetArray(vec, &v), "VecGetArray");
+    if (split)
+      for (int row = 0; row < rows; ++row) v[petsc_row(row)] = from[row];
+    else
+      std::memcpy(v, from, static_cast<size_t>(rows) * sizeof(double));
+    check(VecRestoreArray(vec, &v), "VecRestoreArray");
+  }
 }
 
 SolveStats LinearSolver::solve_assembled_direct(const std::vector<double>& rhs, std::vector<double>& x) {
   Impl& s = *impl_;
-  const int n = s.pattern.rows;
-  VM_CHECK(x.size() == n + s.pattern.ghost_rows.size(), "the solution's size: own and ghost rows");
+  VM_CHECK(x.size() == s.rows + s.block_size * s.pattern.ghost_rows.size(), "the solution's size: own and ghost rows");
   s.load(rhs, x, "solve_assembled_direct");
   if (!s.direct) {  // kept: the next solves reuse its symbolic factorization (the same pattern)
     check(KSPCreate(s.distributed ? PETSC_COMM_WORLD : PETSC_COMM_SELF, &s.direct), "KSPCreate");
@@ -432,7 +551,13 @@ SolveStats LinearSolver::solve_assembled_direct(const std::vector<double>& rhs, 
     check(PCSetType(pc, PCLU), "PCSetType");
     check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
   }
-  check(KSPSetOperators(s.direct, s.matrix, s.matrix), "KSPSetOperators");
+  Mat a = s.matrix;
+  if (s.split) {  // MUMPS factors one matrix: the blocks copied into one (the fallback of small systems)
+    check(MatConvert(s.matrix, MATAIJ, s.converted ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &s.converted),
+          "MatConvert (the field blocks into one matrix)");
+    a = s.converted;
+  }
+  check(KSPSetOperators(s.direct, a, a), "KSPSetOperators");
   check(KSPSolve(s.direct, s.rhs, s.solution), "KSPSolve (MUMPS)");
   KSPConvergedReason reason = KSP_DIVERGED_PC_FAILED;
   check(KSPGetConvergedReason(s.direct, &reason), "KSPGetConvergedReason");
@@ -461,10 +586,8 @@ double LinearSolver::relative_residual(const std::vector<double>& rhs, const std
 
 SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::vector<double>& x) {
   Impl& s = *impl_;
-  const int n = s.pattern.rows;
-  VM_CHECK(x.size() == n + s.pattern.ghost_rows.size(), "the solution's size: own and ghost rows");
+  VM_CHECK(x.size() == s.rows + s.block_size * s.pattern.ghost_rows.size(), "the solution's size: own and ghost rows");
   s.load(rhs, x, "solve_assembled");
-  PetscScalar* v = nullptr;
 
   // Reuse the preconditioner while the solve before did not take much more than the one
   // that built it; cap the reusing solve at twice that, and repeat it with a new preconditioner
@@ -497,9 +620,7 @@ SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::ve
     check(KSPSetTolerances(s.ksp, rtol, abstol, dtol, max_it), "KSPSetTolerances");
     if (reason <= 0) {  // the old preconditioner no longer serves: start again with a new one
       check(KSPGetIterationNumber(s.ksp, &failed_iterations), "KSPGetIterationNumber");
-      check(VecGetArray(s.solution, &v), "VecGetArray");
-      std::memcpy(v, x.data(), static_cast<size_t>(n) * sizeof(double));
-      check(VecRestoreArray(s.solution, &v), "VecRestoreArray");
+      s.load(rhs, x, "solve_assembled");  // the initial guess again
       check(KSPSetReusePreconditioner(s.ksp, PETSC_FALSE), "KSPSetReusePreconditioner");
       check(KSPSolve(s.ksp, s.rhs, s.solution), "KSPSolve");
       built = true;

@@ -16,11 +16,14 @@
 
 namespace vesselmesh::flow {
 
-// Compressed rows with sorted (global) column indices; `values` of a matrix follow this order.
-// On several MPI processes each holds its own consecutive rows: `first_row` .. first_row + rows
-// of `global_rows` (the whole matrix on one process: first_row 0, global_rows = rows), and
-// reads the solution at its `ghost_rows` too (rows other processes own: the unknowns of its
-// cells' points that it does not own).
+// Compressed rows with sorted (global) column indices, of points (nodes): a matrix with
+// `block_size` unknowns a point holds a block_size x block_size block at every entry (rows
+// block_size x rows, interleaved per point; a right-hand side or solution too). On several MPI
+// processes each holds its own consecutive rows: `first_row` .. first_row + rows of
+// `global_rows` (the whole matrix on one process: first_row 0, global_rows = rows), and reads
+// the solution at its `ghost_rows` too (rows other processes own: the points of its cells that it
+// does not own). `values` of a matrix follow the pattern's order: per row, per component row
+// i < block_size, per column, per component column j.
 struct SparsePattern {
   int rows = 0;
   int first_row = 0;
@@ -43,7 +46,9 @@ struct SolveStats {
 // Steady solves: GMRES (preconditioned on the right: the residual it tests is the system's) with
 // a Schur-complement field split, the velocity block by block-Jacobi
 // ILU, the Schur complement (preconditioned by selfp) by hypre BoomerAMG (HMIS coarsening, ext+i
-// interpolation, strong threshold 0.6). Its tolerance is relative to the initial residual, which
+// interpolation, strong threshold 0.6, aggressive coarsening on its first level: a hierarchy of
+// less memory, as many iterations and faster; at 1.4 M unknowns a time step took 4.81 s against 6.69,
+// the Stokes start 73 s against 107, 3172 MB against 3420; bench/flow_scaling.sh). Its tolerance is relative to the initial residual, which
 // a steady iteration's initial guess (the iterate) makes the steady equations' residual there: each
 // solve cuts it 1000-fold (an inexact Newton's forcing term of 1e-3; the Stokes solve from rest
 // 1e6-fold, NavierStokes::solve_steady), so that the iterations converge in the residual itself.
@@ -60,7 +65,7 @@ inline std::string saddle_point_options() {
          "-fieldsplit_u_ksp_type preonly -fieldsplit_u_pc_type bjacobi -fieldsplit_u_sub_pc_type ilu "
          "-fieldsplit_p_ksp_type preonly -fieldsplit_p_pc_type hypre -fieldsplit_p_pc_hypre_type boomeramg "
          "-fieldsplit_p_pc_hypre_boomeramg_coarsen_type HMIS -fieldsplit_p_pc_hypre_boomeramg_interp_type ext+i "
-         "-fieldsplit_p_pc_hypre_boomeramg_strong_threshold 0.6";
+         "-fieldsplit_p_pc_hypre_boomeramg_strong_threshold 0.6 -fieldsplit_p_pc_hypre_boomeramg_agg_nl 1";
 }
 // Time steps, whose mass term makes the velocity block diagonally strong: the same Schur
 // field split, its velocity block by SOR (PETSc's: local to each process under MPI), which
@@ -81,7 +86,7 @@ inline std::string time_step_options() {
          "-fieldsplit_u_ksp_type preonly -fieldsplit_u_pc_type sor "
          "-fieldsplit_p_ksp_type preonly -fieldsplit_p_pc_type hypre -fieldsplit_p_pc_hypre_type boomeramg "
          "-fieldsplit_p_pc_hypre_boomeramg_coarsen_type HMIS -fieldsplit_p_pc_hypre_boomeramg_interp_type ext+i "
-         "-fieldsplit_p_pc_hypre_boomeramg_strong_threshold 0.6";
+         "-fieldsplit_p_pc_hypre_boomeramg_strong_threshold 0.6 -fieldsplit_p_pc_hypre_boomeramg_agg_nl 1";
 }
 // The Stokes start of an unsteady run (a solver of its own, gone before the time steps): the time
 // steps' split, with GMRES on the right, whose one vector an iteration (FGMRES: two) matters over
@@ -121,14 +126,41 @@ std::string scatter_from_first(const std::function<std::string(int rank)>& make)
 [[noreturn]] void abort_all(int code);
 
 // A process's matrix values between LinearSolver::begin_assembly() and end_assembly(), in
-// PETSc's own arrays: per row its entries in the columns this process owns (`own`) and in the
-// others' (`other`), each part in the pattern's order, row after row. (The pattern's row, its
-// columns sorted, is its others' columns left of its own, its own, then its others' right of
-// them.) On one process `other` is empty.
+// PETSc's own arrays, in one of two layouts (entry_place finds an entry in either).
+// - One matrix (`split` false): per row of unknowns its entries in the columns of the points this
+//   process owns (`own`) and in the others' (`other`), each part in the pattern's order, row after
+//   row (on one process `other` is empty).
+// - A field split (`split` true: block_size > 1 and PETSc's fieldsplit preconditioner): the
+//   matrix held as four blocks, field F 0 the first block_size - 1 components of every point, 1 the
+//   last, block [F][G] the rows of field F in the columns of field G, each in its own and others'
+//   parts (`split_own`, `split_other`) as above: the preconditioner works on the blocks themselves,
+//   where a field split of one matrix copies them out (the matrix twice, 266 MB at 420k unknowns).
 struct MatrixValues {
   double* own = nullptr;
   double* other = nullptr;
+  bool split = false;
+  double* split_own[2][2] = {};
+  double* split_other[2][2] = {};
 };
+
+// Where point a's component row i holds its entries at one column point: the first
+// block_size - 1 components (consecutive from `first`) and the last (`last`). `own`: the column
+// point is this process's; `before`: the column points of that kind (own or other) in the rows
+// before a; `count`: in a's row; `place`: the column point's position among them in a's row.
+struct EntryPlace {
+  double* first;
+  double* last;
+};
+inline EntryPlace entry_place(const MatrixValues& m, int block_size, bool own, int before, int count, int i,
+                              int place) {
+  if (!m.split) {
+    double* const v = (own ? m.own : m.other) + block_size * (block_size * before + i * count + place);
+    return {v, v + block_size - 1};
+  }
+  const int c = block_size - 1, field = i == c ? 1 : 0, rows = field ? 1 : c, row = field ? 0 : i;
+  double* const* const blocks = own ? m.split_own[field] : m.split_other[field];
+  return {blocks[0] + c * (rows * before + row * count + place), blocks[1] + rows * before + row * count + place};
+}
 
 class LinearSolver {
  public:

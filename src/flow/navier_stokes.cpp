@@ -79,9 +79,8 @@ struct NavierStokes::Impl {
   // positions in it (rows of owned points only; -1 elsewhere).
   std::vector<int> node_start, node_columns;
   std::vector<std::array<int, 16>> tet_slots;
-  SparsePattern pattern;  // sizes and ghost rows (no columns: the solver has them)
-  int nonzeros = 0;       // this process's matrix entries
-  SparsePattern columns_pattern() const;
+  // The solver's pattern: the node graph's rows of this process, with the ghost points.
+  SparsePattern point_pattern() const;
   std::vector<Boundary> boundaries;
   std::vector<char> fixed;  // per local dof: Dirichlet
   std::unique_ptr<LinearSolver> solver;
@@ -109,25 +108,17 @@ struct NavierStokes::Impl {
 
   int n() const { return static_cast<int>(points.size()); }
 
-  // Offset (among this process's values in the pattern's order) of entry (owned node a's
-  // component i, node b's component j) from a's position k of b, j = 0.
-  int value_index(int a, int i, int k) const {
-    const int degree = node_start[a + 1] - node_start[a];
-    return kBlock * kBlock * node_start[a] + i * kBlock * degree + kBlock * (k - node_start[a]);
-  }
-  // The same in PETSc's arrays (MatrixValues: the entries in the columns of owned points and in
-  // the others', apart): per owned node its first value in each, per node-graph position its
-  // place among the node's owned (or other) neighbours, times kBlock.
+  // Where owned node a's component row i holds its entries at its node-graph position k, in the
+  // matrix's arrays during the assembly (flow/linear_solver.h, entry_place): per owned node its
+  // owned and other neighbours before it, and per node-graph position its place among the node's
+  // owned (or other) neighbours.
   std::vector<int> own_start, other_start, place;
   MatrixValues values;  // during the assembly
   bool owned_global(int g) const { return g >= node_begin && g < node_begin + owned; }
-  double* entry(int a, int i, int k) const {
-    if (owned_global(node_columns[k])) {
-      const int width = (own_start[a + 1] - own_start[a]) / kBlock;  // kBlock x the owned neighbours
-      return values.own + own_start[a] + i * width + place[k];
-    }
-    const int width = (other_start[a + 1] - other_start[a]) / kBlock;
-    return values.other + other_start[a] + i * width + place[k];
+  EntryPlace entry(int a, int i, int k) const {
+    if (owned_global(node_columns[k]))
+      return entry_place(values, kBlock, true, own_start[a], own_start[a + 1] - own_start[a], i, place[k]);
+    return entry_place(values, kBlock, false, other_start[a], other_start[a + 1] - other_start[a], i, place[k]);
   }
   // Position of local point b among owned point a's neighbours in the node graph.
   int slot(int a, int b) const {
@@ -210,41 +201,26 @@ void NavierStokes::Impl::build(MeshPart part) {
   for (int a = 0; a < owned; ++a) {
     int own = 0, other = 0;
     for (int k = node_start[a]; k < node_start[a + 1]; ++k)
-      place[k] = kBlock * (owned_global(node_columns[k]) ? own++ : other++);
-    own_start[a + 1] = own_start[a] + kBlock * kBlock * own;
-    other_start[a + 1] = other_start[a] + kBlock * kBlock * other;
+      place[k] = owned_global(node_columns[k]) ? own++ : other++;
+    own_start[a + 1] = own_start[a] + own;
+    other_start[a + 1] = other_start[a] + other;
   }
   tet_slots.resize(tets.size());
   for (size_t e = 0; e < tets.size(); ++e)
     for (int a = 0; a < 4; ++a)
       for (int b = 0; b < 4; ++b)
         tet_slots[e][a * 4 + b] = owns(tets[e][a]) ? slot(tets[e][a], tets[e][b]) : -1;
-
-  // The dof pattern's sizes and ghost rows; its columns are made when the solver is.
-  pattern.rows = kBlock * owned;
-  pattern.first_row = kBlock * node_begin;
-  pattern.global_rows = kBlock * total_points;
-  for (size_t a = owned; a < local_global.size(); ++a)
-    for (int j = 0; j < kBlock; ++j) pattern.ghost_rows.push_back(kBlock * local_global[a] + j);
-  nonzeros = kBlock * kBlock * node_start[owned];
 }
 
-// The dof pattern whole: row (a, i) holds every neighbour's four components. Made for the linear
-// solver, which keeps it (the assembly finds its places from the node graph).
-SparsePattern NavierStokes::Impl::columns_pattern() const {
-  SparsePattern full = pattern;
-  full.row_start.assign(pattern.rows + 1, 0);
-  full.columns.resize(nonzeros);
-  for (int a = 0; a < owned; ++a)
-    for (int i = 0; i < kBlock; ++i) {
-      const int row = kBlock * a + i;
-      int at = value_index(a, i, node_start[a]);
-      full.row_start[row] = at;
-      for (int k = node_start[a]; k < node_start[a + 1]; ++k)
-        for (int j = 0; j < kBlock; ++j) full.columns[at++] = kBlock * node_columns[k] + j;
-      full.row_start[row + 1] = at;
-    }
-  return full;
+SparsePattern NavierStokes::Impl::point_pattern() const {
+  SparsePattern graph;
+  graph.rows = owned;
+  graph.first_row = node_begin;
+  graph.global_rows = total_points;
+  graph.row_start = node_start;
+  graph.columns = node_columns;
+  graph.ghost_rows.assign(local_global.begin() + owned, local_global.end());
+  return graph;
 }
 
 // The part's boundary triangles (their points all local, one owned) and its local points' tags.
@@ -489,8 +465,8 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
                                   double mass_coefficient, double dt, bool newton) {
   make_solver();
   values = solver->begin_assembly();  // the matrix's own values, zeroed
-  rhs.assign(pattern.rows, 0.0);
-  std::vector<double> diagonal(pattern.rows, 0.0);
+  rhs.assign(kBlock * owned, 0.0);
+  std::vector<double> diagonal(kBlock * owned, 0.0);
   const double m = mass_coefficient;
   const double time_term = dt > 0.0 ? 4.0 / (dt * dt) : 0.0;
 
@@ -560,12 +536,12 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
         }
         rhs[row] += F[4 * a + i];
         for (int b = 0; b < 4; ++b) {
-          double* const place_b = entry(na, i, tet_slots[e][a * 4 + b]);
+          const EntryPlace place_b = entry(na, i, tet_slots[e][a * 4 + b]);
           const int nb = t4[b];
           for (int j = 0; j < kBlock; ++j) {
             const int column = kBlock * nb + j;
             if (fixed[column]) rhs[row] -= K[4 * a + i][4 * b + j] * dirichlet[column];
-            else place_b[j] += K[4 * a + i][4 * b + j];
+            else (j < 3 ? place_b.first[j] : *place_b.last) += K[4 * a + i][4 * b + j];
           }
         }
       }
@@ -591,7 +567,7 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
           for (int bb = 0; bb < 3; ++bb) {
             const int nb = f.v[bb];
             if (fixed[kBlock * nb + i]) continue;
-            entry(na, i, slot(na, nb))[i] += beta * f.area / 12.0 * (a == bb ? 2.0 : 1.0);
+            entry(na, i, slot(na, nb)).first[i] += beta * f.area / 12.0 * (a == bb ? 2.0 : 1.0);
           }
         }
       }
@@ -605,7 +581,8 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
       if (!fixed[row]) continue;
       double d = std::abs(diagonal[row]);
       if (!(d > 0.0)) d = 1.0;
-      entry(a, i, slot(a, a))[i] = d;
+      const EntryPlace diagonal_place = entry(a, i, slot(a, a));
+      (i < 3 ? diagonal_place.first[i] : *diagonal_place.last) = d;
       rhs[row] = d * dirichlet[row];
     }
   solver->end_assembly();
@@ -616,7 +593,7 @@ void NavierStokes::Impl::make_solver() {
   if (solver) return;
   const std::string defaults =
       fc.steady ? saddle_point_options() : stokes_start ? stokes_start_options() : time_step_options();
-  solver = std::make_unique<LinearSolver>(columns_pattern(), kBlock, defaults, fc.petsc_options);
+  solver = std::make_unique<LinearSolver>(point_pattern(), kBlock, defaults, fc.petsc_options);
   solver->reuse_preconditioner(!fc.steady && fc.reuse_preconditioner);
   // A steady iteration's solve cuts the residual it starts from 1000-fold (saddle_point_options),
   // and does nothing once that residual is a hundredth of the change tolerance (of ||b||): the
@@ -639,7 +616,7 @@ void NavierStokes::Impl::solve_system(StepReport& report, const std::string& whe
   SolveStats stats =
       direct_fallback && direct_now ? solver->solve_assembled_direct(rhs, x) : solver->solve_assembled(rhs, x);
   if (!stats.converged && direct_fallback && !direct_now &&
-      pattern.global_rows <= NavierStokes::kDirectFallbackUnknowns) {
+      kBlock * total_points <= NavierStokes::kDirectFallbackUnknowns) {
     reporter->warning(fmt::format("{}: the iterative solver did not converge ({} after {} iterations): solved directly "
                                   "(MUMPS's LU) instead, and so the steady iterations after it; the steady "
                                   "preconditioner is weak where convection dominates",
@@ -950,7 +927,7 @@ void NavierStokes::restore(const FlowState& state) {
 
 double NavierStokes::time() const { return impl_->t; }
 int NavierStokes::steps() const { return impl_->step_count; }
-int NavierStokes::dofs() const { return impl_->pattern.total_rows(); }
+int NavierStokes::dofs() const { return kBlock * impl_->total_points; }
 const std::vector<Vec3>& NavierStokes::velocity() const {
   impl_->publish();
   return impl_->u_mesh;

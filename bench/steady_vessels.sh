@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# Steady solves at a stated Reynolds number on real vessels (issue 29's acceptance): each open
+# vessel of ../shared/data/vessels remeshed (uniform, TRIANGLES), its volume built (`volume`
+# defaults: 4 layers), a parabolic inflow at its largest end at Reynolds number RE by that end's
+# diameter (blood: 1060 kg/m3, 0.0035 Pa s), zero traction at the other ends, solved steady by
+# Newton's method (`steady_method = "newton"`) to a change of 1e-8. One process.
+#   bench/steady_vessels.sh [BUILD] [OUT] [RE=300] [TRIANGLES=20000] [VESSELS=...]
+# Printed per vessel: unknowns, the inflow (mL/s), the nonlinear iterations, the steady residual
+# (||A(u) u - b|| / ||b||), linear iterations, seconds, and whether it settled.
+set -euo pipefail
+build=${1:-build}
+out=${2:-$(mktemp -d)}
+re=${3:-300}
+triangles=${4:-20000}
+here=$(cd "$(dirname "$0")" && pwd)
+data="$here/../../shared/data/vessels"
+vessels=${5:-"gmsh_carotid_bifurcation_open_m.stl gmsh_aortic_arch_open_cm.stl vmtk_aorta_iliac_bifurcation_open_mm.stl"}
+vm="$build/vesselmesh"
+[[ -x $vm ]] || { echo "build first: $vm is needed" >&2; exit 2; }
+[[ -d $data ]] || { echo "skipped: the shared vessels ($data) are not here" >&2; exit 0; }
+mkdir -p "$out"
+out=$(cd "$out" && pwd)
+vm=$(cd "$(dirname "$vm")" && pwd)/vesselmesh
+echo "vesselmesh $("$vm" --version 2>/dev/null | head -1), $(nproc) cores; Re $re, $triangles triangles; results in $out"
+printf "%-44s %9s %8s %6s %11s %8s %8s %s\n" vessel unknowns mL/s iters residual linear seconds status
+for v in $vessels; do
+  name=${v%.stl}
+  unit=${name##*_}
+  dir="$out/$name"
+  mkdir -p "$dir"
+  [[ -f $dir/volume.msh ]] || {
+    "$vm" remesh "$data/$v" -o "$dir/surface.vtp" --size uniform --target-triangles "$triangles" -q
+    "$vm" volume "$dir/surface.vtp" -o "$dir/volume.msh" -q
+  }
+  # The ends as `volume` tags them: inlet the largest, outlet_1, ... the others in `info`'s order.
+  "$vm" info "$dir/surface.vtp" --json >"$dir/info.json"
+  python3 - "$dir" "$unit" "$re" <<'PY'
+import json, math, sys
+d, unit, re = sys.argv[1], sys.argv[2], float(sys.argv[3])
+info = json.load(open(f"{d}/info.json"))
+ends = info["open_ends"]
+scale = info.get("scale_to_mm", 1.0) / 1000.0  # the file's unit to metres
+inlet = max(ends, key=lambda e: e["area"])
+diameter = 2.0 * inlet["radius"] * scale
+rho, mu = 1060.0, 0.0035
+flow_ml = re * mu * math.pi * diameter / (4.0 * rho) * 1e6
+lines = [f'mesh = "volume.msh"', f'length_unit = "{unit}"', "[fluid]", f"density = {rho}", f"viscosity = {mu}",
+         "[time]", "steady = true", 'steady_method = "newton"', "steady_tolerance = 1e-8",
+         "steady_iterations = 60", "[[boundary]]", 'tag = "inlet"', 'type = "velocity"',
+         'profile = "parabolic"', f"flow = {flow_ml:.6g}"]
+for k in range(1, len(ends)):
+    lines += ["[[boundary]]", f'tag = "outlet_{k}"', 'type = "traction"']
+lines += ["[[boundary]]", 'tag = "wall"', 'type = "wall"']
+open(f"{d}/case.toml", "w").write("\n".join(lines) + "\n")
+open(f"{d}/flow_ml", "w").write(f"{flow_ml:.4g}")
+PY
+  status=settled
+  "$vm" simulate "$dir/case.toml" -o "$dir/result" 2>"$dir/log" >/dev/null || status="failed (exit $?, see $dir/log)"
+  python3 - "$dir" "$name" "$status" <<'PY'
+import json, os, sys
+d, name, status = sys.argv[1:]
+s = json.load(open(f"{d}/result/summary.json")) if os.path.exists(f"{d}/result/summary.json") else {}
+print(f"{name:44s} {s.get('dofs', 0):9d} {open(f'{d}/flow_ml').read():>8s} {s.get('steps', 0):6d} "
+      f"{s.get('steady_residual', float('nan')):11.3e} {s.get('linear_iterations', 0):8d} "
+      f"{s.get('seconds', float('nan')):8.1f} {status}")
+PY
+done
