@@ -29,22 +29,23 @@ for v in $vessels; do
   dir="$out/$name"
   mkdir -p "$dir"
   [[ -f $dir/volume.msh ]] || {
-    "$vm" remesh "$data/$v" -o "$dir/surface.vtp" --size uniform --target-triangles "$triangles" -q
+    "$vm" remesh "$data/$v" --units "$unit" -o "$dir/surface.vtp" --size uniform --target-triangles "$triangles" -q
     "$vm" volume "$dir/surface.vtp" -o "$dir/volume.msh" -q
   }
-  # The ends as `volume` tags them: inlet the largest, outlet_1, ... the others in `info`'s order.
+  # The ends as `volume` tags them: inlet the largest, outlet_1, ... the others in `info`'s order
+  # (the remeshed surface and its volume in mm, whatever the file's unit).
   "$vm" info "$dir/surface.vtp" --json >"$dir/info.json"
-  python3 - "$dir" "$unit" "$re" <<'PY'
+  python3 - "$dir" "$re" <<'PY'
 import json, math, sys
-d, unit, re = sys.argv[1], sys.argv[2], float(sys.argv[3])
+d, re = sys.argv[1], float(sys.argv[2])
 info = json.load(open(f"{d}/info.json"))
 ends = info["open_ends"]
-scale = info.get("scale_to_mm", 1.0) / 1000.0  # the file's unit to metres
+scale = 1e-3  # mm to m
 inlet = max(ends, key=lambda e: e["area"])
 diameter = 2.0 * inlet["radius"] * scale
 rho, mu = 1060.0, 0.0035
 flow_ml = re * mu * math.pi * diameter / (4.0 * rho) * 1e6
-lines = [f'mesh = "volume.msh"', f'length_unit = "{unit}"', "[fluid]", f"density = {rho}", f"viscosity = {mu}",
+lines = [f'mesh = "volume.msh"', 'length_unit = "mm"', "[fluid]", f"density = {rho}", f"viscosity = {mu}",
          "[time]", "steady = true", 'steady_method = "newton"', "steady_tolerance = 1e-8",
          "steady_iterations = 60", "[[boundary]]", 'tag = "inlet"', 'type = "velocity"',
          'profile = "parabolic"', f"flow = {flow_ml:.6g}"]

@@ -129,15 +129,26 @@ struct NavierStokes::Impl {
   void build(MeshPart part);
   void build_boundaries(const MeshPart& part);
   void set_dirichlet(double time);
-  // `newton`: the Galerkin convection's full Jacobian at `advect` (its (du . grad) u part and the
-  // right-hand side that goes with it), for Newton's steady iterations; else its Picard (Oseen) form.
+  // How the convection is linearized at `advect`: Picard's (Oseen) form; Newton's on the Galerkin
+  // convection (its (du . grad) u part and the right-hand side that goes with it), the
+  // stabilization's terms in Picard's form; or Newton's on the stabilization's terms too (tau held).
+  enum class Linearization { picard, convection, full };
   void assemble(const std::vector<Vec3>& advect, const std::vector<Vec3>& history, double mass_coefficient,
-                double dt, bool newton = false);
+                double dt, Linearization linearization = Linearization::picard);
   // `direct_fallback`: when the iterative solver does not converge and the system has at most
   // NavierStokes::kDirectFallbackUnknowns unknowns, solve it directly (MUMPS), said (steady solves).
   void solve_system(StepReport& report, const std::string& where, bool direct_fallback = false);
   bool direct_now = false;  // a steady solve went to the direct solver: its next iterations too
   double cfl(const std::vector<Vec3>& advect, double dt) const;
+  // x: the state (velocity, pressure) per local point, the solver's interleaved rows.
+  std::vector<double> state_rows(const std::vector<Vec3>& velocity, const std::vector<double>& pressure) const;
+  // The steady residual ||A(w) w - b|| / ||b|| at the state `w` (rows as x's; the system
+  // assembled at its velocity in Picard's form, which leaves the solver's matrix so).
+  double steady_residual(const std::vector<double>& w);
+  // Newton's step from the current state to the solved x, cut back (1, 1/2, ... kLeastStep) until
+  // the steady residual falls below (1 - 1e-4 lambda) `before` (Armijo's test); x becomes the
+  // state taken. Returns lambda, or 0 when no step passed (x left as Newton's).
+  double line_search(double before, StepReport& report);
   // Every boundary's flux (m3/s) of `velocity`, summed over the processes (every process calls it).
   std::vector<double> fluxes(const std::vector<Vec3>& velocity) const;
   // The resistance and rcr boundaries' pressure (over rho) from the current outflow; an rcr end's
@@ -419,6 +430,41 @@ double NavierStokes::Impl::take_solution(std::vector<Vec3>& velocity, std::vecto
   return sums[1] > 0.0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
 }
 
+std::vector<double> NavierStokes::Impl::state_rows(const std::vector<Vec3>& velocity,
+                                                   const std::vector<double>& pressure) const {
+  std::vector<double> w(kBlock * n(), 0.0);
+  for (int a = 0; a < n(); ++a) {
+    for (int i = 0; i < 3; ++i) w[kBlock * a + i] = velocity[a][i];
+    w[kBlock * a + 3] = pressure[a];
+  }
+  return w;
+}
+
+double NavierStokes::Impl::steady_residual(const std::vector<double>& w) {
+  std::vector<Vec3> velocity(n());
+  for (int a = 0; a < n(); ++a) velocity[a] = Vec3(w[kBlock * a], w[kBlock * a + 1], w[kBlock * a + 2]);
+  assemble(velocity, std::vector<Vec3>(n(), Vec3::Zero()), 0.0, 0.0);
+  return solver->relative_residual(rhs, w);
+}
+
+double NavierStokes::Impl::line_search(double before, StepReport& report) {
+  const std::vector<double> newton = x, from = state_rows(u, p);
+  const auto assembly = Clock::now();
+  double lambda = 1.0;
+  for (;; lambda *= 0.5) {
+    if (lambda < NavierStokes::kLeastStep) {
+      x = newton;
+      lambda = 0.0;
+      break;
+    }
+    for (size_t r = 0; r < x.size(); ++r) x[r] = from[r] + lambda * (newton[r] - from[r]);
+    const double after = steady_residual(x);
+    if (after < (1.0 - 1e-4 * lambda) * before) break;
+  }
+  report.assembly_seconds += seconds_since(assembly);
+  return lambda;
+}
+
 double NavierStokes::Impl::cfl(const std::vector<Vec3>& advect, double dt) const {
   double worst = 0.0;
   for (size_t e = 0; e < tets.size(); ++e) {
@@ -462,7 +508,9 @@ void NavierStokes::Impl::publish() const {
 
 // mass_coefficient: alpha_0 / dt (0 for a steady solve); history: the BDF history over dt.
 void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::vector<Vec3>& history,
-                                  double mass_coefficient, double dt, bool newton) {
+                                  double mass_coefficient, double dt, Linearization linearization) {
+  const bool newton = linearization != Linearization::picard;
+  const bool stabilization_jacobian = linearization == Linearization::full;
   make_solver();
   values = solver->begin_assembly();  // the matrix's own values, zeroed
   rhs.assign(kBlock * owned, 0.0);
@@ -513,14 +561,33 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
       // The element's convection is V/4 (ubar . grad) u in each row, ubar the mean of its corners'
       // velocities: its derivative in u_b beyond the Picard part is V/16 grad u (every a, b), and
       // Newton's right-hand side gains that part applied to the current flow, V/4 (grad u) ubar.
+      // The stabilization's terms are tau_m V c_a r (momentum, SUPG) and tau_m V g_a . r
+      // (continuity, PSPG), r = m u + (ubar . grad) u + grad p - h the element's strong residual,
+      // c_a = ubar . g_a: their derivatives in u_b through ubar (tau_m held: the consistent
+      // approximate Jacobian) are tau_m V/4 (g_a[j] r_i + c_a grad(i, j)) and tau_m V/4 (g_a . grad(:, j)),
+      // and Newton's right-hand side gains them applied to the current flow. (Without them Newton's
+      // iterations converged only linearly where the stabilization weighs: 0.7 a step on a carotid
+      // bifurcation at Re 300.)
       Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();  // grad(i, j) = d u_i / d x_j
-      for (int a = 0; a < 4; ++a) grad += advect[t4[a]] * g[a].transpose();
-      const Vec3 extra = V / 4.0 * (grad * ubar);
+      Vec3 grad_p = Vec3::Zero();
       for (int a = 0; a < 4; ++a) {
+        grad += advect[t4[a]] * g[a].transpose();
+        grad_p += p[t4[a]] * g[a];
+      }
+      const Vec3 convection = grad * ubar;
+      const Vec3 r = m * ubar + convection + grad_p - hbar;
+      const double t = stabilization_jacobian ? tau_m : 0.0;
+      const Vec3 extra = V / 4.0 * convection;
+      for (int a = 0; a < 4; ++a) {
+        const Vec3 pspg = g[a].transpose() * grad;  // (g_a . grad(:, j))_j
         for (int b = 0; b < 4; ++b)
-          for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) K[4 * a + i][4 * b + j] += V / 16.0 * grad(i, j);
-        for (int i = 0; i < 3; ++i) F[4 * a + i] += extra[i];
+          for (int j = 0; j < 3; ++j) {
+            for (int i = 0; i < 3; ++i)
+              K[4 * a + i][4 * b + j] += V / 16.0 * grad(i, j) + t * V / 4.0 * (g[a][j] * r[i] + c[a] * grad(i, j));
+            K[4 * a + 3][4 * b + j] += t * V / 4.0 * pspg[j];
+          }
+        for (int i = 0; i < 3; ++i) F[4 * a + i] += extra[i] + t * V * c[a] * (r[i] + convection[i]);
+        F[4 * a + 3] += t * V * g[a].dot(convection);
       }
     }
 
@@ -710,12 +777,22 @@ StepReport NavierStokes::solve_steady() {
   Impl& s = *impl_;
   const auto start = Clock::now();
   StepReport report;
-  s.set_dirichlet(0.0);
+  // Newton's iterations (fc.newton) go up the inflow in stages (NavierStokes::kInflowStages): each
+  // stage's flow, to a loose change, the next one's start (the flow scaled with the inflow).
+  size_t stage = s.fc.newton ? 0 : kInflowStages.size() - 1;
+  const auto set_inflow = [&] {
+    s.set_dirichlet(0.0);
+    for (size_t row = 0; row < s.dirichlet.size(); ++row)
+      if (s.fixed[row]) s.dirichlet[row] *= kInflowStages[stage];
+  };
+  set_inflow();
   std::vector<Vec3> advect(s.n(), Vec3::Zero()), none(s.n(), Vec3::Zero());
   // Pseudo time steps (pseudo_transient): the step length, 0 for a Picard iteration; the first
   // iteration is the Stokes solve either way.
   double pseudo_dt = 0.0, last_rate = 0.0, resume_dt = 0.0;
-  bool settled = false, use_newton = false;
+  bool settled = false;
+  using Linearization = Impl::Linearization;
+  Linearization level = Linearization::picard;  // the Stokes solve, then Newton's (fc.newton) or Picard's
   s.direct_now = false;
   for (int iteration = 0; iteration < s.fc.steady_iterations; ++iteration) {
     s.update_resistance(0.0);
@@ -724,37 +801,71 @@ StepReport NavierStokes::solve_steady() {
     std::vector<Vec3> history = none;
     if (pseudo_dt > 0.0)
       for (int a = 0; a < s.n(); ++a) history[a] = s.u[a] / pseudo_dt;
-    const bool newton_now = use_newton;
-    s.assemble(advect, history, pseudo_dt > 0.0 ? 1.0 / pseudo_dt : 0.0, pseudo_dt, newton_now);
+    s.assemble(advect, history, pseudo_dt > 0.0 ? 1.0 / pseudo_dt : 0.0, pseudo_dt, level);
     report.assembly_seconds += seconds_since(assembly);
     // The system assembled at the iterate, times it, less its right-hand side: the steady
     // residual of the iterate (a pseudo time term and Newton's terms cancel there).
     const double residual = iteration > 0 ? s.solver->relative_residual(s.rhs, s.x) : -1.0;
-    const std::string what = pseudo_dt > 0.0 ? "pseudo time step" : newton_now ? "Newton iteration" : "Picard iteration";
+    const auto name = [](Linearization l) {
+      return l == Linearization::full         ? "Newton iteration"
+             : l == Linearization::convection ? "Newton iteration on the convection"
+                                              : "Picard iteration";
+    };
+    const std::string what = pseudo_dt > 0.0 ? "pseudo time step" : name(level);
     // The Stokes solve from rest 1000 times tighter than the iterations after it (to 1e-6 of ||b||
     // by default): a loose start costs more in the Picard iterations it adds (measured: 260 linear
     // iterations against 175 on a 117k-unknown pipe, 114 when the solves stopped at 1e-6 of ||b|| and
     // the residual with them).
     s.solver->scale_tolerance(iteration == 0 ? 1e-3 : 1.0);
     s.solve_system(report, fmt::format("steady {} {}", what, iteration + 1), /*direct_fallback=*/true);
-    const double last_change = report.change;
+    // Newton's step cut back until the residual falls; where none does (far from the answer,
+    // where the linearization misleads), the iteration again from the same flow with the
+    // linearization below (Newton's on the convection alone, then Picard's), which the next
+    // iterations keep until one takes its whole step.
+    double lambda = 1.0;
+    std::string taken;
+    if (level != Linearization::picard) {
+      lambda = s.line_search(residual, report);
+      while (lambda == 0.0) {
+        taken += ", its step raised the residual";
+        level = level == Linearization::full ? Linearization::convection : Linearization::picard;
+        const auto again = Clock::now();
+        s.assemble(advect, history, 0.0, 0.0, level);
+        report.assembly_seconds += seconds_since(again);
+        s.solve_system(report, fmt::format("steady {} {} (again)", name(level), iteration + 1), true);
+        lambda = level == Linearization::picard ? 1.0 : s.line_search(residual, report);
+        taken += fmt::format(": a {} instead", name(level));
+      }
+      if (lambda < 1.0) taken += fmt::format(", its step times {:g}", lambda);
+    }
     report.change = s.take_solution(s.u, s.p);
     s.published = false;
     report.step = iteration + 1;
     s.check_finite(report);
-    s.reporter->info(fmt::format("steady iteration {} ({}{}): {}velocity change {:.3e}, {} linear iterations",
+    s.reporter->info(fmt::format("steady iteration {} ({}{}{}{}): {}velocity change {:.3e}, {} linear iterations",
                                  iteration + 1, what,
+                                 stage + 1 < kInflowStages.size()
+                                     ? fmt::format(" at {:g} of the inflow", kInflowStages[stage])
+                                     : "",
+                                 taken,
                                  pseudo_dt > 0.0 ? fmt::format(", CFL {:.3g}", s.cfl(advect, pseudo_dt)) : "",
                                  residual >= 0.0 ? fmt::format("residual before it {:.3e}, ", residual) : "",
                                  report.change, report.linear_iterations));
     advect = s.u;
-    if (s.fc.newton && iteration > 0) {
-      // Newton's iterations once Picard's have brought the change under kNewtonFrom; back to
-      // Picard's (for as many as it takes) when a Newton iteration's change grows.
-      if (newton_now && report.change > last_change) use_newton = false;
-      else if (!newton_now && report.change < kNewtonFrom) use_newton = true;
+    // Newton's iterations (fc.newton) from the first after the Stokes solve, on the convection;
+    // after a whole step, with the stabilization's terms too (converging quadratically near the
+    // answer, where the convection's alone converged linearly where the stabilization weighs).
+    if (s.fc.newton && lambda == 1.0)
+      level = level == Linearization::picard ? Linearization::convection : Linearization::full;
+    // Settled when the step (Newton's whole step where it was cut back) is under the tolerance; a
+    // stage below the whole inflow when it is under kStageTolerance: the next stage from its flow.
+    const double step_change = report.change / (lambda > 0.0 ? lambda : 1.0);
+    if (stage + 1 < kInflowStages.size() && iteration > 0 && step_change < kStageTolerance) {
+      ++stage;
+      set_inflow();
+      continue;
     }
-    const bool small = report.change < s.fc.steady_tolerance;
+    const bool small = stage + 1 == kInflowStages.size() && step_change < s.fc.steady_tolerance;
     if (!s.fc.pseudo_transient) {
       if (iteration > 0 && small) {
         settled = true;

@@ -34,6 +34,7 @@
 #include "mesh/reporter.h"
 #include "mesh/tetmesh.h"
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -103,12 +104,22 @@ class NavierStokes {
   // (switched evolution relaxation); once a step changes the flow by less than the tolerance,
   // a Picard iteration (no time term) confirms it. The steady answer is the same; the pseudo
   // steps damp the iteration (not a flow that is itself unsteady).
-  // With the case's newton: Picard iterations from Stokes until the change is under
-  // kNewtonFrom, then Newton's (the Galerkin convection's full Jacobian; the stabilization's
-  // Picard form, so an inexact Newton), back to Picard's while a Newton iteration's change grows.
+  // With the case's newton: the inflow taken up in stages (kInflowStages: Dirichlet velocities a
+  // quarter, a half, then all of the case's), each stage from the last one's flow, to a change under
+  // kStageTolerance but the last; the Stokes flow at the first stage, then Newton's iterations: on
+  // the Galerkin convection (its full Jacobian, the stabilization in Picard's form) and, after a
+  // whole step, on the stabilization's terms too (their derivatives through the advecting
+  // velocity, tau held), each step cut back (halved down to kLeastStep) until the steady residual
+  // falls (Armijo's test, the residual evaluated by an assembly at the trial flow); where none does,
+  // the iteration again with the linearization below (Newton's on the convection, then Picard's).
+  // The iteration has settled when Newton's whole step is under the tolerance at the whole inflow.
   StepReport solve_steady();
   static constexpr double kPseudoCflStart = 5.0;
-  static constexpr double kNewtonFrom = 1e-2;
+  static constexpr double kLeastStep = 1.0 / 16.0;
+  // Newton's stages of the inflow (the Reynolds number), each to a change under kStageTolerance
+  // but the last.
+  static constexpr std::array<double, 3> kInflowStages = {0.25, 0.5, 1.0};
+  static constexpr double kStageTolerance = 1e-2;
   // A steady iteration's linear system the iterative solver does not converge on is solved
   // directly (MUMPS) up to this many unknowns (its memory grows faster than they do), said in a
   // warning; larger ones are a ComputationError as before.
