@@ -34,7 +34,7 @@ for v in $vessels; do
   }
   # The ends as `volume` tags them: inlet the largest, outlet_1, ... the others in `info`'s order
   # (the remeshed surface and its volume in mm, whatever the file's unit).
-  "$vm" info "$dir/surface.vtp" --json >"$dir/info.json"
+  "$vm" info "$dir/surface.vtp" --json -q >"$dir/info.json"
   python3 - "$dir" "$re" <<'PY'
 import json, math, sys
 d, re = sys.argv[1], float(sys.argv[2])

@@ -193,7 +193,7 @@ struct LinearSolver::Impl {
   bool distributed = false;
   // A field split (MatrixValues::split): `matrix` is PETSc's nest of `blocks`, and PETSc's vectors
   // hold a process's rows field after field (its points' first block_size - 1 components, then
-  // their last), which copy_in and copy_out translate from and to the interleaved rows.
+  // their last), which load and copy_out translate from and to the interleaved rows.
   bool split = false;
   Mat blocks[2][2] = {};
   // Per point row: its own (the process's) column points' first position in it and their count,
@@ -491,12 +491,10 @@ MatrixValues LinearSolver::begin_assembly() {
       double*& other = s.split ? m.split_other[f][g] : m.other;
       for (auto [part, values] : {std::pair{s.own_part[f][g], &own}, std::pair{s.other_part[f][g], &other}}) {
         if (!part) continue;
-        PetscInt entries = 0;
         check(MatSeqAIJGetArray(part, values), "MatSeqAIJGetArray");
-        MatInfo info{};
+        MatInfo info{};  // its entries' count
         check(MatGetInfo(part, MAT_LOCAL, &info), "MatGetInfo");
-        entries = static_cast<PetscInt>(info.nz_used);
-        std::fill(*values, *values + entries, 0.0);
+        std::fill(*values, *values + static_cast<size_t>(info.nz_used), 0.0);
       }
     }
   s.out = true;

@@ -778,7 +778,8 @@ StepReport NavierStokes::solve_steady() {
   const auto start = Clock::now();
   StepReport report;
   // Newton's iterations (fc.newton) go up the inflow in stages (NavierStokes::kInflowStages): each
-  // stage's flow, to a loose change, the next one's start (the flow scaled with the inflow).
+  // stage's flow, to a loose change, the next one's start (its boundary values the next stage's
+  // from the next solve on; scaling the flow with them measured no better).
   size_t stage = s.fc.newton ? 0 : kInflowStages.size() - 1;
   const auto set_inflow = [&] {
     s.set_dirichlet(0.0);
@@ -820,8 +821,8 @@ StepReport NavierStokes::solve_steady() {
     s.solve_system(report, fmt::format("steady {} {}", what, iteration + 1), /*direct_fallback=*/true);
     // Newton's step cut back until the residual falls; where none does (far from the answer,
     // where the linearization misleads), the iteration again from the same flow with the
-    // linearization below (Newton's on the convection alone, then Picard's), which the next
-    // iterations keep until one takes its whole step.
+    // linearization below (Newton's on the convection alone, then Picard's), from which the next
+    // iteration goes up again after a whole step.
     double lambda = 1.0;
     std::string taken;
     if (level != Linearization::picard) {
@@ -853,8 +854,9 @@ StepReport NavierStokes::solve_steady() {
                                  report.change, report.linear_iterations));
     advect = s.u;
     // Newton's iterations (fc.newton) from the first after the Stokes solve, on the convection;
-    // after a whole step, with the stabilization's terms too (converging quadratically near the
-    // answer, where the convection's alone converged linearly where the stabilization weighs).
+    // after a whole step, with the stabilization's terms too (each step near the answer cutting the
+    // residual 28-75-fold on the bend of the tests, where the convection's alone converged linearly,
+    // 0.7 a step on a carotid bifurcation at Re 300).
     if (s.fc.newton && lambda == 1.0)
       level = level == Linearization::picard ? Linearization::convection : Linearization::full;
     // Settled when the step (Newton's whole step where it was cut back) is under the tolerance; a
