@@ -13,6 +13,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <numeric>
 
 #ifndef VESSELMESH_VERSION
 #define VESSELMESH_VERSION "0.0.0"
@@ -121,6 +123,14 @@ std::string uncertainty(const GridConvergence& g) {
   return "n/a";
 }
 
+// One quantity's differences of the compared meshes from the reference, for the summary.
+struct Ranked {
+  std::string quantity;  // "ring NAME: minimum", "point NAME"
+  std::vector<std::pair<std::string, double>> differences;  // per compared mesh, percent
+  double band = NAN;         // the reference's uncertainty in the same percent (NaN: not known)
+  std::string uncertainty;   // as a table cell
+};
+
 }  // namespace
 
 void write_report(const StudyConfig& config, StudyResult& result, const std::string& folder, const Reporter& reporter) {
@@ -142,6 +152,9 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
                             config.surface, config.flow_case, result.time, reference.name, unit, VESSELMESH_VERSION));
 
   for (const std::string& w : result.warnings) doc.paragraph("Warning: " + w + ".");
+  // The summary goes here, made once every difference is known.
+  const size_t summary_markdown = doc.markdown.size(), summary_html = doc.html.size();
+  std::vector<Ranked> ranked;
   doc.heading("Table 1: the meshes");
   std::vector<std::vector<std::string>> rows;
   for (const MeshRun& m : meshes)
@@ -323,6 +336,14 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
       const double ref_min = ref_ring.samples[ref_ring.minimum].magnitude, ref_mean = ring_mean(ref_ring);
       const GridConvergence& g = ring_min_gci[r];
       BarSeries s{"ring " + result.rings[r].name, {}};
+      // The reference's uncertainty over its ring's mean, as the differences the summary ranks by.
+      Ranked rank{fmt::format("ring {}: minimum", result.rings[r].name), {}, NAN, "not estimated"};
+      if (have_gci && ref_mean > 0.0 && g.found) {
+        rank.band = 100.0 * g.band() / ref_mean;
+        rank.uncertainty = fmt::format("{:.2f} %", rank.band);
+      } else if (have_gci && ref_mean > 0.0 && std::isfinite(g.spread) && g.spread > 0.0) {
+        rank.uncertainty = fmt::format(">= {:.2f} % (spread)", 100.0 * g.spread * std::abs(g.phi1) / ref_mean);
+      }
       for (const MeshRun& m : meshes) {
         if (&m == &reference) continue;
         const post::RingSample& least = m.rings[r].samples[m.rings[r].minimum];
@@ -333,9 +354,11 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
         const double shift = ref_ring.closed ? turn / 360.0 * ref_ring.length
                                              : least.arc_length - ref_ring.samples[ref_ring.minimum].arc_length;
         const std::string verdict = have_gci ? against_band(least.magnitude - ref_min, g) : "unknown";
-        if (!m.series)
+        if (!m.series) {
           (verdict == "larger" ? beyond : verdict == "unknown" ? unknown : within)
               .push_back(fmt::format("{} on {}", m.name, result.rings[r].name));
+          rank.differences.emplace_back(m.name, d_mean);
+        }
         s.values.push_back(d);
         table.push_back({result.rings[r].name, m.name, number(least.magnitude), number(ref_min), number(least.angle, 4),
                          number(shift, 3), percent(d), percent(d_mean), percent(d_ext),
@@ -349,6 +372,7 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
                            {"reference_uncertainty", verdict}});
       }
       chart.series.push_back(s);
+      ranked.push_back(rank);
     }
     doc.figure("ring_minimum_differences", svg(chart),
                "Relative difference of each ring's minimum WSS from the reference's, per mesh");
@@ -376,12 +400,15 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
       const double ref = reference.points[p].value.norm();
       const GridConvergence& g = point_gci[p];
       BarSeries s{"point " + config.points[p].name, {}};
+      Ranked rank{"point " + config.points[p].name, {}, have_gci && g.found ? 100.0 * g.gci_fine : NAN,
+                  have_gci ? uncertainty(g) : "not estimated"};
       for (const MeshRun& m : meshes) {
         if (&m == &reference) continue;
         const double v = m.points[p].value.norm(), d = relative_difference(v, ref);
         const double d_ext = have_gci && g.found ? relative_difference(v, g.extrapolated) : NAN;
         const std::string verdict = have_gci ? against_band(v - ref, g) : "unknown";
         s.values.push_back(d);
+        if (!m.series) rank.differences.emplace_back(m.name, d);
         table.push_back({config.points[p].name, m.name, number(v), number(ref), percent(d), percent(d_ext),
                          have_gci ? uncertainty(g) : "n/a", verdict});
         numbers.push_back({{"what", "point"}, {"point", config.points[p].name}, {"mesh", m.name}, {"wss_Pa", v},
@@ -390,11 +417,93 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
                            {"reference_uncertainty", verdict}});
       }
       chart.series.push_back(s);
+      ranked.push_back(rank);
     }
     doc.figure("point_differences", svg(chart), "Relative difference of the WSS at each point, per mesh");
     doc.table({"point", "mesh", "WSS (Pa)", "reference (Pa)", "difference", "against extrapolated", "reference GCI",
                "beyond the reference's uncertainty"},
               table);
+  }
+
+  // The summary, read first: the compared meshes ranked per quantity (closest to the reference
+  // first), with the reference's uncertainty, then their mean place and their cost.
+  Json summary;
+  {
+    Document top;
+    top.folder = folder;
+    top.heading("Summary");
+    Json rankings = Json::array();
+    std::map<std::string, std::vector<int>> places;  // per compared mesh, its place per quantity
+    std::vector<std::vector<std::string>> ranking_rows;
+    int known = 0;
+    const auto key = [](double d) { return std::isfinite(d) ? std::abs(d) : INFINITY; };
+    for (Ranked& q : ranked) {
+      std::stable_sort(q.differences.begin(), q.differences.end(),
+                       [&](const auto& a, const auto& b) { return key(a.second) < key(b.second); });
+      std::vector<std::string> order, beyond;
+      Json list = Json::array();
+      for (size_t k = 0; k < q.differences.size(); ++k) {
+        const auto& [name, d] = q.differences[k];
+        places[name].push_back(static_cast<int>(k) + 1);
+        order.push_back(fmt::format("{} ({})", name, percent(d)));
+        if (std::isfinite(q.band) && !(std::abs(d) <= q.band)) beyond.push_back(name);
+        list.push_back({{"mesh", name}, {"difference_percent", std::isfinite(d) ? Json(d) : Json(nullptr)},
+                        {"place", k + 1}});
+      }
+      known += std::isfinite(q.band) ? 1 : 0;
+      ranking_rows.push_back({q.quantity, fmt::format("{}", fmt::join(order, ", ")), q.uncertainty,
+                      !std::isfinite(q.band) ? "not known"
+                      : beyond.empty()       ? "none"
+                                             : fmt::format("{}", fmt::join(beyond, ", "))});
+      rankings.push_back({{"quantity", q.quantity},
+                          {"order", list},
+                          {"reference_uncertainty_percent", std::isfinite(q.band) ? Json(q.band) : Json(nullptr)},
+                          {"beyond_uncertainty", beyond}});
+    }
+    top.paragraph(
+        "The compared meshes ranked by their difference from the reference, closest first, per quantity: at each "
+        "ring's minimum the difference over the reference ring's mean WSS (meaningful where the minimum is near "
+        "zero), at each point the relative difference. Beside it the reference's own uncertainty in the same "
+        "measure (its GCI band, from the grid convergence below) and the meshes whose difference exceeds it: a "
+        "difference within it cannot be told from the reference's own error, and neither can the order of two "
+        "meshes whose differences are closer than it.");
+    top.table({"quantity", "closest to the reference first (difference)", "reference's uncertainty",
+               "meshes beyond it"},
+              ranking_rows);
+    std::vector<std::vector<std::string>> cost;
+    std::vector<std::pair<double, std::string>> overall;
+    Json means = Json::array();
+    for (const MeshRun& m : meshes) {
+      if (m.series || &m == &reference) continue;
+      const std::vector<int>& p = places[m.name];
+      const double mean =
+          p.empty() ? NAN : static_cast<double>(std::accumulate(p.begin(), p.end(), 0)) / static_cast<double>(p.size());
+      const long first = std::count(p.begin(), p.end(), 1);
+      const double flow = m.seconds.count("flow") ? m.seconds.at("flow") : NAN;
+      cost.push_back({m.name, number(mean, 3), std::to_string(first), std::to_string(m.dofs), number(flow, 3)});
+      means.push_back({{"mesh", m.name}, {"mean_place", std::isfinite(mean) ? Json(mean) : Json(nullptr)},
+                       {"first_places", first}, {"dofs", m.dofs},
+                       {"flow_seconds", std::isfinite(flow) ? Json(flow) : Json(nullptr)}});
+      if (std::isfinite(mean)) overall.emplace_back(mean, m.name);
+    }
+    std::stable_sort(overall.begin(), overall.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    top.table({"mesh", "mean place (1: closest)", "first places", "flow unknowns", "flow wall time (s)"}, cost);
+    std::vector<std::string> closest;  // the best mean place, ties together
+    for (const auto& [mean, name] : overall)
+      if (mean == overall.front().first) closest.push_back(name);
+    if (!overall.empty())
+      top.paragraph(fmt::format(
+          "Closest on average: {} (mean place {:.2f} over {} quantities). The reference's uncertainty is known for {} "
+          "of the {} quantities{}",
+          fmt::join(closest, " and "), overall.front().first, ranked.size(), known, ranked.size(),
+          known == 0 ? ": without it these differences cannot be told from the reference's own error (see the grid "
+                       "convergence section)."
+                     : "."));
+    doc.markdown.insert(summary_markdown, top.markdown);
+    doc.html.insert(summary_html, top.html);
+    summary = {{"rankings", rankings}, {"mean_place", means},
+               {"closest_on_average", closest}};
   }
 
   // Pictures: the compared surface meshes, and the WSS field on them and on the reference.
@@ -487,6 +596,7 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
   j["meshes"] = list;
   j["differences"] = numbers;
   j["grid_convergence"] = convergence;
+  j["summary"] = summary;
   j["seconds"] = result.seconds;
   j["warnings"] = result.warnings;
   io::write_text(folder + "/study.json", j.dump(2) + "\n");

@@ -335,6 +335,25 @@ point = [0, 3, 0]
   // Two uniform meshes only (the compared one and level 1): no grid convergence, said.
   EXPECT_NE(md.find("Not estimated: it needs three uniform meshes"), std::string::npos);
   EXPECT_TRUE(j["grid_convergence"].empty());
+  // The summary first: per ring minimum and point the compared meshes closest first, their mean place.
+  ASSERT_NE(md.find("## Summary"), std::string::npos);
+  EXPECT_LT(md.find("## Summary"), md.find("## Table 1: the meshes"));
+  const nlohmann::json& summary = j["summary"];
+  ASSERT_EQ(summary["rankings"].size(), 3u);  // 2 ring minima, 1 point
+  for (const auto& q : summary["rankings"]) {
+    ASSERT_EQ(q["order"].size(), 2u) << q.dump();
+    EXPECT_LE(std::abs(q["order"][0]["difference_percent"].get<double>()),
+              std::abs(q["order"][1]["difference_percent"].get<double>()))
+        << q.dump();
+    EXPECT_TRUE(q["reference_uncertainty_percent"].is_null());  // no grid convergence here
+  }
+  ASSERT_EQ(summary["mean_place"].size(), 2u);
+  double places = 0.0;
+  for (const auto& m : summary["mean_place"]) places += m["mean_place"].get<double>();
+  EXPECT_DOUBLE_EQ(places, 3.0);  // places 1 and 2 on each quantity
+  ASSERT_TRUE(summary["closest_on_average"].is_array());
+  EXPECT_GE(summary["closest_on_average"].size(), 1u);
+  EXPECT_NE(md.find("cannot be told from the reference's own error"), std::string::npos);
 
   // Again: every mesh reused, the same numbers.
   const StudyResult again = run_study(config, tmp.path("out"));
