@@ -778,8 +778,8 @@ StepReport NavierStokes::solve_steady() {
   const auto start = Clock::now();
   StepReport report;
   // Newton's iterations (fc.newton) go up the inflow in stages (NavierStokes::kInflowStages): each
-  // stage's flow, to a loose change, the next one's start (its boundary values the next stage's
-  // from the next solve on; scaling the flow with them measured no better).
+  // stage's flow, to a loose change, extrapolated to the next one's start (below: the residual
+  // there 0.06-0.2 instead of the 0.5 of the last stage's flow with the new inflow).
   size_t stage = s.fc.newton ? 0 : kInflowStages.size() - 1;
   const auto set_inflow = [&] {
     s.set_dirichlet(0.0);
@@ -788,6 +788,8 @@ StepReport NavierStokes::solve_steady() {
   };
   set_inflow();
   std::vector<Vec3> advect(s.n(), Vec3::Zero()), none(s.n(), Vec3::Zero());
+  std::vector<Vec3> stage_u(s.n(), Vec3::Zero());  // the last stage's flow (rest before the first)
+  std::vector<double> stage_p(s.n(), 0.0);
   // Pseudo time steps (pseudo_transient): the step length, 0 for a Picard iteration; the first
   // iteration is the Stokes solve either way.
   double pseudo_dt = 0.0, last_rate = 0.0, resume_dt = 0.0;
@@ -863,6 +865,20 @@ StepReport NavierStokes::solve_steady() {
     // stage below the whole inflow when it is under kStageTolerance: the next stage from its flow.
     const double step_change = report.change / (lambda > 0.0 ? lambda : 1.0);
     if (stage + 1 < kInflowStages.size() && iteration > 0 && step_change < kStageTolerance) {
+      // The next stage's start: the flow extrapolated along the stages (a secant through this
+      // stage's flow and the last one's; from rest, zero flow at zero inflow, for the first).
+      const double before = stage > 0 ? kInflowStages[stage - 1] : 0.0, now = kInflowStages[stage];
+      const double factor = (kInflowStages[stage + 1] - now) / (now - before);
+      for (int a = 0; a < s.n(); ++a) {
+        const Vec3 u = s.u[a];
+        const double p = s.p[a];
+        s.u[a] += factor * (u - stage_u[a]);
+        s.p[a] += factor * (p - stage_p[a]);
+        stage_u[a] = u;
+        stage_p[a] = p;
+      }
+      s.x = s.state_rows(s.u, s.p);
+      advect = s.u;
       ++stage;
       set_inflow();
       continue;

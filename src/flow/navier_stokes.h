@@ -105,8 +105,9 @@ class NavierStokes {
   // a Picard iteration (no time term) confirms it. The steady answer is the same; the pseudo
   // steps damp the iteration (not a flow that is itself unsteady).
   // With the case's newton: the inflow taken up in stages (kInflowStages: Dirichlet velocities a
-  // quarter, a half, then all of the case's), each stage from the last one's flow, to a change under
-  // kStageTolerance but the last; the Stokes flow at the first stage, then Newton's iterations: on
+  // quarter, a half, then all of the case's), each stage from the flow extrapolated from the last
+  // two (a secant; zero flow at zero inflow before the first), to a change under kStageTolerance but
+  // the last; the Stokes flow at the first stage, then Newton's iterations: on
   // the Galerkin convection (its full Jacobian, the stabilization in Picard's form) and, after a
   // whole step, on the stabilization's terms too (their derivatives through the advecting
   // velocity, tau held), each step cut back (halved down to kLeastStep) until the steady residual

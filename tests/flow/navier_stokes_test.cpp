@@ -348,16 +348,17 @@ TEST(NavierStokes, PseudoTransientSteadyReachesPicardsFlow) {
 }
 
 // steady_method = "newton": Newton's iterations from the Stokes flow up the inflow in stages (a
-// quarter, a half, the whole; on the convection, then with the stabilization's terms, each step
-// cut back until the residual falls) reach Picard's flow in fewer iterations where convection
-// matters: a 180 degree bend (R 2 mm, bend radius 6 mm) at 2 mL/s, Re ~ 190 by the diameter; both
-// converge in the steady residual (below 1e-8 relative: 7.7e-10 measured, Newton in 13 iterations,
-// Picard in 22), and to the same flow within 1e-6 of the peak (2e-8 measured); Newton's last steps
-// cut the residual more than 10-fold each. (Without the stages: 10 iterations here, but stalled at a
-// carotid bifurcation at Re 300, bench/steady_vessels.sh.) (Before: Picard's iterations to a 1e-2 change, then Newton's on
-// the convection alone: 15 iterations; before the linear solves' tolerance was relative to the
-// residual they start from: 13 against 20 iterations, both stalled at a residual of 9e-7.) (In a
-// straight pipe, where (u . grad) u nearly vanishes, they take as many.)
+// quarter, a half, the whole, each from the flow extrapolated from the last two; on the convection,
+// then with the stabilization's terms, each step cut back until the residual falls) reach Picard's
+// flow in fewer iterations where convection matters: a 180 degree bend (R 2 mm, bend radius 6 mm)
+// at 2 mL/s, Re ~ 190 by the diameter; both converge in the steady residual (below 1e-8 relative:
+// 1.5e-10 measured, Newton in 13 iterations, Picard in 22), and to the same flow within 1e-6 of the
+// peak (2e-8 measured); Newton's last steps cut the residual more than 10-fold each. (Without the
+// stages: 10 iterations here, but steps cut to 1/8 on a carotid bifurcation at Re 300, its residual
+// still 0.18 after 8 iterations; bench/steady_vessels.sh.) (Before: Picard's iterations to a 1e-2 change, then Newton's on the
+// convection alone: 15 iterations; before the linear solves' tolerance was relative to the residual
+// they start from: 13 against 20 iterations, both stalled at a residual of 9e-7.) (In a straight
+// pipe, where (u . grad) u nearly vanishes, they take as many.)
 TEST(NavierStokes, NewtonSteadyReachesPicardsFlowInFewerIterations) {
   const double R = 2.0, Q = 2.0;
   const TriMesh bend = synth::bend({.radius = R, .bend_radius = 6.0, .angle_deg = 180.0, .inlet_length = 8.0,
@@ -395,7 +396,7 @@ TEST(NavierStokes, NewtonSteadyReachesPicardsFlowInFewerIterations) {
   EXPECT_LE(by_newton.step + 3, by_picard.step);
   EXPECT_LE(by_newton.step, 15);
   // Fast at the end: the last three falls of the residual (down to 1e-8) each more than 10-fold
-  // (28, 75 and 50 measured: the linear solves' 1e-3 and the held tau bound them).
+  // (46, 41 and 41 measured: the linear solves' 1e-3 and the held tau bound them).
   std::vector<double> falls;
   for (size_t k = 1; k < residuals.values.size(); ++k)
     if (residuals.values[k - 1] > 1e-8) falls.push_back(residuals.values[k - 1] / residuals.values[k]);
