@@ -669,13 +669,7 @@ void NavierStokes::Impl::make_solver() {
 }
 
 void NavierStokes::Impl::solve_system(StepReport& report, const std::string& where, bool direct_fallback) {
-  const auto initial_guess = [&] {  // the current flow
-    x.assign(kBlock * n(), 0.0);
-    for (int a = 0; a < n(); ++a) {
-      for (int i = 0; i < 3; ++i) x[kBlock * a + i] = u[a][i];
-      x[kBlock * a + 3] = p[a];
-    }
-  };
+  const auto initial_guess = [&] { x = state_rows(u, p); };  // the current flow
   initial_guess();
   const auto start = Clock::now();
   // Once a steady solve has needed the direct solver, the next ones go to it at once (the

@@ -49,9 +49,9 @@ struct SimulationSummary {
   std::string solver;
   PartitionReport partition;          // how the points are shared among the processes
   std::vector<double> peak_memory_mb;  // per process: its peak resident memory
-  double distribution_memory_mb = 0.0;
+  double distribution_memory_mb = 0.0;  // the first process's peak once it had read, split and sent the mesh
   std::string indices_file;  // indices.vtp, or indices.pvtp under MPI
-  double steady_residual = -1.0;  // a steady case's relative residual at its answer (StepReport::residual)  // the first process's peak once it had read, split and sent the mesh
+  double steady_residual = -1.0;  // a steady case's relative residual at its answer (StepReport::residual)
   std::vector<BoundaryFlow> ends;      // per boundary at the end: flux, mean pressure (rcr: capacitor too)
 };
 
