@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <tuple>
 #include <type_traits>
 
 namespace vesselmesh::flow {
@@ -202,6 +203,10 @@ struct LinearSolver::Impl {
   // The parts PETSc holds the values in: per matrix (one, or the split's four) its own and
   // others' column blocks (the matrix itself on one process).
   Mat own_part[2][2] = {}, other_part[2][2] = {};
+  // The Schur complement's preconditioning matrix of the caller's (MatrixValues::schur_own), in
+  // block [1][1]'s pattern, and its own and others' parts; null unless the options ask for it.
+  Mat schur = nullptr, schur_own = nullptr, schur_other = nullptr;
+  bool user_schur = false;  // -pc_fieldsplit_schur_precondition user
   MatrixValues assembling;  // PETSc's arrays while they are out
   bool out = false;         // between begin_assembly and end_assembly
   VecScatter ghosts = nullptr;  // MPI: the solution's ghost rows to this process
@@ -237,6 +242,7 @@ struct LinearSolver::Impl {
     if (rhs) VecDestroy(&rhs);
     if (solution) VecDestroy(&solution);
     if (converted) MatDestroy(&converted);
+    if (schur) MatDestroy(&schur);
     if (matrix) MatDestroy(&matrix);
     for (auto& row : blocks)
       for (Mat& block : row)
@@ -307,6 +313,7 @@ void LinearSolver::Impl::make_matrix(MPI_Comm comm) {
     IS fields[2] = {};
     check(ISCreateStride(comm, c * n, first, 1, &fields[0]), "ISCreateStride");
     check(ISCreateStride(comm, n, first + c * n, 1, &fields[1]), "ISCreateStride");
+    if (user_schur) schur = expanded_matrix(comm, distributed, pattern, 1, 1, schur_own, schur_other);
     Mat list[4] = {blocks[0][0], blocks[0][1], blocks[1][0], blocks[1][1]};
     const PetscErrorCode code = MatCreateNest(comm, 2, fields, 2, fields, list, &matrix);
     ISDestroy(&fields[0]);
@@ -400,6 +407,11 @@ LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::str
   PetscBool given = PETSC_FALSE;
   check(PetscOptionsGetString(nullptr, nullptr, "-pc_type", pc_type, sizeof pc_type, &given), "-pc_type");
   s.split = block_size > 1 && given && std::string(pc_type) == PCFIELDSPLIT;
+  char schur_pre[64] = "";
+  check(PetscOptionsGetString(nullptr, nullptr, "-pc_fieldsplit_schur_precondition", schur_pre, sizeof schur_pre,
+                              &given),
+        "-pc_fieldsplit_schur_precondition");
+  s.user_schur = s.split && given && std::string(schur_pre) == "user";
   s.make_matrix(comm);
   // Each point row's own column points (sorted, consecutive in it) and the counts before it.
   const int first = s.pattern.first_row;
@@ -448,6 +460,7 @@ LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::str
     }
     check(PCFieldSplitSetIS(pc, "u", fields[0]), "PCFieldSplitSetIS");
     check(PCFieldSplitSetIS(pc, "p", fields[1]), "PCFieldSplitSetIS");
+    if (s.schur) check(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_USER, s.schur), "PCFieldSplitSetSchurPre");
   }
 }
 
@@ -497,6 +510,13 @@ MatrixValues LinearSolver::begin_assembly() {
         std::fill(*values, *values + static_cast<size_t>(info.nz_used), 0.0);
       }
     }
+  for (auto [part, values] : {std::pair{s.schur_own, &m.schur_own}, std::pair{s.schur_other, &m.schur_other}}) {
+    if (!part) continue;
+    check(MatSeqAIJGetArray(part, values), "MatSeqAIJGetArray");
+    MatInfo info{};
+    check(MatGetInfo(part, MAT_LOCAL, &info), "MatGetInfo");
+    std::fill(*values, *values + static_cast<size_t>(info.nz_used), 0.0);
+  }
   s.out = true;
   return m;
 }
@@ -505,6 +525,20 @@ void LinearSolver::end_assembly() {
   Impl& s = *impl_;
   VM_CHECK(s.out, "end_assembly without begin_assembly");
   MatrixValues& m = s.assembling;
+  // The Schur complement's preconditioning matrix: the caller's part plus the pressure block (the
+  // same pattern, the same order).
+  for (auto [part, values, block] : {std::tuple{s.schur_own, &m.schur_own, m.split_own[1][1]},
+                                     std::tuple{s.schur_other, &m.schur_other, m.split_other[1][1]}}) {
+    if (!part) continue;
+    MatInfo info{};
+    check(MatGetInfo(part, MAT_LOCAL, &info), "MatGetInfo");
+    for (size_t k = 0; k < static_cast<size_t>(info.nz_used); ++k) (*values)[k] += block[k];
+    check(MatSeqAIJRestoreArray(part, values), "MatSeqAIJRestoreArray");
+  }
+  if (s.schur) {
+    check(MatAssemblyBegin(s.schur, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    check(MatAssemblyEnd(s.schur, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  }
   for (int f = 0; f < (s.split ? 2 : 1); ++f)
     for (int g = 0; g < (s.split ? 2 : 1); ++g) {
       double*& own = s.split ? m.split_own[f][g] : m.own;

@@ -43,9 +43,18 @@ struct SolveStats {
   bool preconditioner_built = true;  // false: the previous solve's preconditioner served
 };
 
+// The Schur complement of every default split below is preconditioned by a matrix the flow
+// assembles (`user`: MatrixValues::schur_own; its pressure block plus a weighted pressure Laplacian
+// on the element stencil, NavierStokes's assembly) where PETSc's selfp multiplied
+// A11 - A10 diag(A00)^-1 A01 out over two rings of points at every preconditioner build: at 420k
+// unknowns 832 MB against 1021 and 1.24 s a step against 1.15 (9/8/4/4/3 iterations against 7/6/3/3/3),
+// the Stokes start 11 s against 15; the carotid bifurcation's steady solve at Re 300 110 s against
+// 198 and 900 MB against 1293 (1050 linear iterations against 1419; bench/flow_scaling.sh,
+// bench/steady_vessels.sh). A caller's `-pc_fieldsplit_schur_precondition selfp` has PETSc's again.
+//
 // Steady solves: GMRES (preconditioned on the right: the residual it tests is the system's) with
 // a Schur-complement field split, the velocity block by block-Jacobi
-// ILU, the Schur complement (preconditioned by selfp) by hypre BoomerAMG (HMIS coarsening, ext+i
+// ILU, the Schur complement by hypre BoomerAMG (HMIS coarsening, ext+i
 // interpolation, strong threshold 0.6, aggressive coarsening on its first level: a hierarchy of
 // less memory, as many iterations and faster; at 1.4 M unknowns a time step took 4.81 s against 6.69,
 // the Stokes start 73 s against 107, 3172 MB against 3420; bench/flow_scaling.sh). Its tolerance is relative to the initial residual, which
@@ -61,7 +70,7 @@ inline std::string saddle_point_options() {
   return "-ksp_type gmres -ksp_pc_side right -ksp_rtol 1e-3 -ksp_converged_use_initial_residual_norm "
          "-ksp_max_it 1000 -ksp_gmres_restart 200 "
          "-pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full "
-         "-pc_fieldsplit_schur_precondition selfp "
+         "-pc_fieldsplit_schur_precondition user "
          "-fieldsplit_u_ksp_type preonly -fieldsplit_u_pc_type bjacobi -fieldsplit_u_sub_pc_type ilu "
          "-fieldsplit_p_ksp_type preonly -fieldsplit_p_pc_type hypre -fieldsplit_p_pc_hypre_type boomeramg "
          "-fieldsplit_p_pc_hypre_boomeramg_coarsen_type HMIS -fieldsplit_p_pc_hypre_boomeramg_interp_type ext+i "
@@ -82,7 +91,7 @@ inline std::string saddle_point_options() {
 inline std::string time_step_options() {
   return "-ksp_type fgmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 30 "
          "-pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full "
-         "-pc_fieldsplit_schur_precondition selfp "
+         "-pc_fieldsplit_schur_precondition user "
          "-fieldsplit_u_ksp_type preonly -fieldsplit_u_pc_type sor "
          "-fieldsplit_p_ksp_type preonly -fieldsplit_p_pc_type hypre -fieldsplit_p_pc_hypre_type boomeramg "
          "-fieldsplit_p_pc_hypre_boomeramg_coarsen_type HMIS -fieldsplit_p_pc_hypre_boomeramg_interp_type ext+i "
@@ -135,21 +144,32 @@ std::string scatter_from_first(const std::function<std::string(int rank)>& make)
 //   last, block [F][G] the rows of field F in the columns of field G, each in its own and others'
 //   parts (`split_own`, `split_other`) as above: the preconditioner works on the blocks themselves,
 //   where a field split of one matrix copies them out (the matrix twice, 266 MB at 420k unknowns).
+// - The Schur complement's preconditioning matrix (`schur_own`, `schur_other`; under a field split
+//   whose options say `-pc_fieldsplit_schur_precondition user`, null otherwise): one value per entry
+//   of the point pattern, laid out as block [1][1]. The caller adds there its approximation of
+//   -A10 diag(A00)^-1 A01 (the flow: a weighted pressure Laplacian on the pattern's own stencil, where
+//   PETSc's selfp multiplies it out over two rings of points); end_assembly adds block [1][1] to it.
+//   Left at zero, the pressure block alone preconditions the Schur complement.
 struct MatrixValues {
   double* own = nullptr;
   double* other = nullptr;
   bool split = false;
   double* split_own[2][2] = {};
   double* split_other[2][2] = {};
+  double* schur_own = nullptr;
+  double* schur_other = nullptr;
 };
 
 // Where point a's component row i holds its entries at one column point: the first
 // block_size - 1 components (consecutive from `first`) and the last (`last`). `own`: the column
 // point is this process's; `before`: the column points of that kind (own or other) in the rows
 // before a; `count`: in a's row; `place`: the column point's position among them in a's row.
+// `schur`: the Schur complement's preconditioning matrix at (a, column point), for the last row
+// when the assembly has one (MatrixValues::schur_own), null otherwise.
 struct EntryPlace {
   double* first;
   double* last;
+  double* schur = nullptr;
 };
 inline EntryPlace entry_place(const MatrixValues& m, int block_size, bool own, int before, int count, int i,
                               int place) {
@@ -159,7 +179,9 @@ inline EntryPlace entry_place(const MatrixValues& m, int block_size, bool own, i
   }
   const int c = block_size - 1, field = i == c ? 1 : 0, rows = field ? 1 : c, row = field ? 0 : i;
   double* const* const blocks = own ? m.split_own[field] : m.split_other[field];
-  return {blocks[0] + c * (rows * before + row * count + place), blocks[1] + rows * before + row * count + place};
+  double* const schur = own ? m.schur_own : m.schur_other;
+  return {blocks[0] + c * (rows * before + row * count + place), blocks[1] + rows * before + row * count + place,
+          field && schur ? schur + before + place : nullptr};
 }
 
 class LinearSolver {

@@ -147,8 +147,9 @@ struct NavierStokes::Impl {
   double steady_residual(const std::vector<double>& w);
   // Newton's step from the current state to the solved x, cut back (1, 1/2, ... kLeastStep) until
   // the steady residual falls below (1 - 1e-4 lambda) `before` (Armijo's test); x becomes the
-  // state taken. Returns lambda, or 0 when no step passed (x left as Newton's).
-  double line_search(double before, StepReport& report);
+  // state taken, `after` its steady residual. Returns lambda, or 0 when no step passed (x left as
+  // Newton's, `after` -1).
+  double line_search(double before, StepReport& report, double& after);
   // Every boundary's flux (m3/s) of `velocity`, summed over the processes (every process calls it).
   std::vector<double> fluxes(const std::vector<Vec3>& velocity) const;
   // The resistance and rcr boundaries' pressure (over rho) from the current outflow; an rcr end's
@@ -447,7 +448,7 @@ double NavierStokes::Impl::steady_residual(const std::vector<double>& w) {
   return solver->relative_residual(rhs, w);
 }
 
-double NavierStokes::Impl::line_search(double before, StepReport& report) {
+double NavierStokes::Impl::line_search(double before, StepReport& report, double& after) {
   const std::vector<double> newton = x, from = state_rows(u, p);
   const auto assembly = Clock::now();
   double lambda = 1.0;
@@ -455,10 +456,11 @@ double NavierStokes::Impl::line_search(double before, StepReport& report) {
     if (lambda < NavierStokes::kLeastStep) {
       x = newton;
       lambda = 0.0;
+      after = -1.0;
       break;
     }
     for (size_t r = 0; r < x.size(); ++r) x[r] = from[r] + lambda * (newton[r] - from[r]);
-    const double after = steady_residual(x);
+    after = steady_residual(x);
     if (after < (1.0 - 1e-4 * lambda) * before) break;
   }
   report.assembly_seconds += seconds_since(assembly);
@@ -515,11 +517,15 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
   values = solver->begin_assembly();  // the matrix's own values, zeroed
   rhs.assign(kBlock * owned, 0.0);
   std::vector<double> diagonal(kBlock * owned, 0.0);
+  // Per owned point, its share of its elements' momentum diagonal (the Schur complement's
+  // preconditioning matrix at the open ends, below).
+  std::vector<double> momentum_share(values.schur_own ? owned : 0, 0.0);
   const double m = mass_coefficient;
   const double time_term = dt > 0.0 ? 4.0 / (dt * dt) : 0.0;
 
   double K[16][16];
   double F[16];
+  double S[4][4];  // the Schur complement's preconditioning matrix (a weighted pressure Laplacian)
   for (size_t e = 0; e < tets.size(); ++e) {
     const Tet& t4 = tets[e];
     const auto& g = gradients[e];
@@ -538,6 +544,21 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
     const double tau_c = 1.0 / (tau_m * G.trace());
     double c[4];
     for (int a = 0; a < 4; ++a) c[a] = ubar.dot(g[a]);
+    // The Schur complement -A10 A00^-1 A01 is near B D^-1 B^T, D the momentum rows' diagonal per
+    // volume: on the element's own stencil, V w g_a . g_b with w = V over the element's momentum
+    // diagonal (its mass lumped, the viscous, SUPG and grad-div parts; the convection's sums to
+    // zero), where PETSc's selfp multiplies B diag(A00)^-1 B^T out over two rings of points.
+    double w = 0.0;
+    if (values.schur_own) {
+      double momentum = m * V;
+      for (int a = 0; a < 4; ++a)
+        momentum += V * ((nu + tau_c / 3.0) * g[a].squaredNorm() + tau_m * c[a] * c[a]);
+      w = V / momentum;
+      for (int a = 0; a < 4; ++a) {
+        for (int b = 0; b < 4; ++b) S[a][b] = w * V * g[a].dot(g[b]);
+        if (owns(t4[a])) momentum_share[t4[a]] += momentum / 4.0;
+      }
+    }
 
     for (int a = 0; a < 4; ++a) {
       for (int b = 0; b < 4; ++b) {
@@ -576,18 +597,18 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
       }
       const Vec3 convection = grad * ubar;
       const Vec3 r = m * ubar + convection + grad_p - hbar;
-      const double t = stabilization_jacobian ? tau_m : 0.0;
+      const double held = stabilization_jacobian ? tau_m : 0.0;
       const Vec3 extra = V / 4.0 * convection;
       for (int a = 0; a < 4; ++a) {
         const Vec3 pspg = g[a].transpose() * grad;  // (g_a . grad(:, j))_j
         for (int b = 0; b < 4; ++b)
           for (int j = 0; j < 3; ++j) {
             for (int i = 0; i < 3; ++i)
-              K[4 * a + i][4 * b + j] += V / 16.0 * grad(i, j) + t * V / 4.0 * (g[a][j] * r[i] + c[a] * grad(i, j));
-            K[4 * a + 3][4 * b + j] += t * V / 4.0 * pspg[j];
+              K[4 * a + i][4 * b + j] += V / 16.0 * grad(i, j) + held * V / 4.0 * (g[a][j] * r[i] + c[a] * grad(i, j));
+            K[4 * a + 3][4 * b + j] += held * V / 4.0 * pspg[j];
           }
-        for (int i = 0; i < 3; ++i) F[4 * a + i] += extra[i] + t * V * c[a] * (r[i] + convection[i]);
-        F[4 * a + 3] += t * V * g[a].dot(convection);
+        for (int i = 0; i < 3; ++i) F[4 * a + i] += extra[i] + held * V * c[a] * (r[i] + convection[i]);
+        F[4 * a + 3] += held * V * g[a].dot(convection);
       }
     }
 
@@ -609,9 +630,30 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
             const int column = kBlock * nb + j;
             if (fixed[column]) rhs[row] -= K[4 * a + i][4 * b + j] * dirichlet[column];
             else (j < 3 ? place_b.first[j] : *place_b.last) += K[4 * a + i][4 * b + j];
+            if (j == 3 && place_b.schur && !fixed[column]) *place_b.schur += S[a][b];
           }
         }
       }
+    }
+  }
+
+  // The Schur complement at the open ends: there the velocity's divergence B^T q of a pressure q
+  // has a boundary part, q n dS, which the Laplacian above lacks (it leaves a constant pressure
+  // free, which the open ends fix); B D^-1 B^T's share of it, per point its (free components')
+  // area vector a squared over its momentum diagonal, |a|^2 / D.
+  if (values.schur_own) {
+    std::vector<Vec3> area(owned, Vec3::Zero());
+    for (const Boundary& b : boundaries) {
+      if (!is_natural(b.condition.type)) continue;
+      for (const BoundaryFace& f : b.faces)
+        for (int a = 0; a < 3; ++a)
+          if (owns(f.v[a])) area[f.v[a]] += f.area / 3.0 * f.normal;
+    }
+    for (int a = 0; a < owned; ++a) {
+      double squared = 0.0;
+      for (int i = 0; i < 3; ++i) squared += fixed[kBlock * a + i] ? 0.0 : area[a][i] * area[a][i];
+      if (squared > 0.0 && !fixed[kBlock * a + 3] && momentum_share[a] > 0.0)
+        *entry(a, 3, slot(a, a)).schur += squared / momentum_share[a];
     }
   }
 
@@ -820,9 +862,10 @@ StepReport NavierStokes::solve_steady() {
     // linearization below (Newton's on the convection alone, then Picard's), from which the next
     // iteration goes up again after a whole step.
     double lambda = 1.0;
+    double reached = -1.0;  // the steady residual of the state taken, where the line search measured it
     std::string taken;
     if (level != Linearization::picard) {
-      lambda = s.line_search(residual, report);
+      lambda = s.line_search(residual, report, reached);
       while (lambda == 0.0) {
         taken += ", its step raised the residual";
         level = level == Linearization::full ? Linearization::convection : Linearization::picard;
@@ -830,7 +873,7 @@ StepReport NavierStokes::solve_steady() {
         s.assemble(advect, history, 0.0, 0.0, level);
         report.assembly_seconds += seconds_since(again);
         s.solve_system(report, fmt::format("steady {} {} (again)", name(level), iteration + 1), true);
-        lambda = level == Linearization::picard ? 1.0 : s.line_search(residual, report);
+        lambda = level == Linearization::picard ? 1.0 : s.line_search(residual, report, reached);
         taken += fmt::format(": a {} instead", name(level));
       }
       if (lambda < 1.0) taken += fmt::format(", its step times {:g}", lambda);
@@ -877,7 +920,10 @@ StepReport NavierStokes::solve_steady() {
       set_inflow();
       continue;
     }
-    const bool small = stage + 1 == kInflowStages.size() && step_change < s.fc.steady_tolerance;
+    // (Or, after Newton's step, when the residual it reached is under the tolerance: the iteration
+    // that would confirm it by its change is not needed.)
+    const bool small = stage + 1 == kInflowStages.size() &&
+                       (step_change < s.fc.steady_tolerance || (reached >= 0.0 && reached < s.fc.steady_tolerance));
     if (!s.fc.pseudo_transient) {
       if (iteration > 0 && small) {
         settled = true;

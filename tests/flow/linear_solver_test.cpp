@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace vesselmesh::flow {
 namespace {
@@ -114,10 +116,8 @@ TEST(LinearSolver, ReusesThePreconditionerWhileItServes) {
   EXPECT_TRUE(solve_shifted(fresh, pattern, values, 1e-7, exact).preconditioner_built);
 }
 
-// A saddle-point system of points on a line in 4 x 4 blocks (three velocity components and a
-// pressure a point: a diagonally strong velocity block, a gradient and a divergence between
-// neighbours, a stabilizing pressure Laplacian), in the pattern's order.
-SparsePattern saddle_pattern(int n, std::vector<double>& values) {
+// Points on a line, each with its neighbours and itself.
+SparsePattern line_points(int n) {
   SparsePattern p;
   p.rows = n;
   p.row_start.push_back(0);
@@ -125,6 +125,14 @@ SparsePattern saddle_pattern(int n, std::vector<double>& values) {
     for (int b = std::max(0, a - 1); b <= std::min(n - 1, a + 1); ++b) p.columns.push_back(b);
     p.row_start.push_back(p.nonzeros());
   }
+  return p;
+}
+
+// A saddle-point system of points on a line in 4 x 4 blocks (three velocity components and a
+// pressure a point: a diagonally strong velocity block, a gradient and a divergence between
+// neighbours, a stabilizing pressure Laplacian), in the pattern's order.
+SparsePattern saddle_pattern(int n, std::vector<double>& values) {
+  const SparsePattern p = line_points(n);
   for (int a = 0; a < n; ++a)
     for (int i = 0; i < 4; ++i)
       for (int k = p.row_start[a]; k < p.row_start[a + 1]; ++k) {
@@ -141,22 +149,34 @@ SparsePattern saddle_pattern(int n, std::vector<double>& values) {
   return p;
 }
 
+// A saddle point system's value (saddle_pattern's layout) at point a's component i, column point k
+// (its position in the pattern), component j.
+double saddle_value(const SparsePattern& p, const std::vector<double>& values, int a, int i, int k, int j) {
+  const int degree = p.row_start[a + 1] - p.row_start[a];
+  return values[16 * p.row_start[a] + 4 * degree * i + 4 * (k - p.row_start[a]) + j];
+}
+
+// A known solution of the saddle point system and its right-hand side.
+void saddle_solution(const SparsePattern& p, const std::vector<double>& values, std::vector<double>& exact,
+                     std::vector<double>& b) {
+  const int n = p.rows;
+  exact.resize(4 * n);
+  b.assign(4 * n, 0.0);
+  for (int r = 0; r < 4 * n; ++r) exact[r] = std::sin(0.37 * r) + (r % 4 == 3 ? 2.0 : 0.0);
+  for (int a = 0; a < n; ++a)
+    for (int i = 0; i < 4; ++i)
+      for (int k = p.row_start[a]; k < p.row_start[a + 1]; ++k)
+        for (int j = 0; j < 4; ++j) b[4 * a + i] += saddle_value(p, values, a, i, k, j) * exact[4 * p.columns[k] + j];
+}
+
 // The field split holds the matrix as its field blocks (MatrixValues::split) and translates the
 // rows; the answer is the one matrix's (LU, no split) and the exact one.
 TEST(LinearSolver, FieldSplitBlocksSolveAsTheOneMatrix) {
   const int n = 60;
   std::vector<double> values;
   const SparsePattern pattern = saddle_pattern(n, values);
-  std::vector<double> exact(4 * n), b(4 * n, 0.0);
-  for (int r = 0; r < 4 * n; ++r) exact[r] = std::sin(0.37 * r) + (r % 4 == 3 ? 2.0 : 0.0);
-  for (int a = 0; a < n; ++a) {
-    const int degree = pattern.row_start[a + 1] - pattern.row_start[a];
-    for (int i = 0; i < 4; ++i)
-      for (int k = pattern.row_start[a]; k < pattern.row_start[a + 1]; ++k)
-        for (int j = 0; j < 4; ++j)
-          b[4 * a + i] += values[16 * pattern.row_start[a] + 4 * degree * i + 4 * (k - pattern.row_start[a]) + j] *
-                          exact[4 * pattern.columns[k] + j];
-  }
+  std::vector<double> exact, b;
+  saddle_solution(pattern, values, exact, b);
   LinearSolver split(pattern, 4, time_step_options(), "-ksp_rtol 1e-12");
   LinearSolver one(pattern, 4, time_step_options(), "-ksp_type gmres -pc_type lu");
   EXPECT_TRUE(split.begin_assembly().split);
@@ -177,6 +197,68 @@ TEST(LinearSolver, FieldSplitBlocksSolveAsTheOneMatrix) {
   std::vector<double> x_direct(4 * n, 0.0);
   EXPECT_TRUE(split.solve_assembled_direct(b, x_direct).converged);
   for (int r = 0; r < 4 * n; ++r) EXPECT_NEAR(x_direct[r], exact[r], 1e-10) << "row " << r;
+}
+
+// The caller's Schur preconditioning matrix (MatrixValues::schur_own, the flow's default: options
+// with -pc_fieldsplit_schur_precondition user) preconditions the Schur complement. A system whose
+// Schur complement A11 - A10 A00^-1 A01 lies on the pattern (a diagonal A00, one-sided differences
+// in A10 and A01): handed it, the split with exact inner solves is exact and converges at once; with
+// nothing added (the pressure block alone) it iterates. PETSc's selfp makes its own (no array of ours).
+TEST(LinearSolver, SchurPreconditioningMatrixOfTheCallersServes) {
+  const int n = 80;
+  const SparsePattern pattern = line_points(n);
+  const auto divergence = [](int a, int k, int j) { return (j + 1) * (k == a ? 1.0 : k == a + 1 ? -1.0 : 0.0); };
+  const auto value = [&](int a, int i, int b, int j) {
+    if (i < 3 && j < 3) return a == b && i == j ? 4.0 + i : 0.0;
+    if (i < 3) return -divergence(b, a, i);  // the gradient: minus the divergence's transpose
+    if (j < 3) return divergence(a, b, j);
+    return 0.1 * (a == b ? 2.0 : -1.0);
+  };
+  std::vector<double> values;
+  for (int a = 0; a < n; ++a)
+    for (int i = 0; i < 4; ++i)
+      for (int k = pattern.row_start[a]; k < pattern.row_start[a + 1]; ++k)
+        for (int j = 0; j < 4; ++j) values.push_back(value(a, i, pattern.columns[k], j));
+  std::vector<double> exact, b;
+  saddle_solution(pattern, values, exact, b);
+  // -A10 A00^-1 A01 at (a, b), over the velocity points k next to both.
+  const auto schur = [&](int a, int c) {
+    double sum = 0.0;
+    for (int k = std::max(0, std::max(a, c) - 1); k <= std::min(n - 1, std::min(a, c) + 1); ++k)
+      for (int j = 0; j < 3; ++j) sum -= value(a, 3, k, j) * value(k, j, c, 3) / value(k, j, k, j);
+    return sum;
+  };
+  const std::string options = "-ksp_rtol 1e-10 -fieldsplit_u_pc_type lu -fieldsplit_p_pc_type lu";
+  LinearSolver selfp(pattern, 4, time_step_options(), options + " -pc_fieldsplit_schur_precondition selfp");
+  EXPECT_EQ(selfp.begin_assembly().schur_own, nullptr);
+  selfp.end_assembly();
+  const auto solve = [&](bool add_schur) {
+    LinearSolver solver(pattern, 4, time_step_options(), options);
+    const MatrixValues m = solver.begin_assembly();
+    EXPECT_NE(m.schur_own, nullptr);
+    for (int a = 0; a < n; ++a) {
+      const int degree = pattern.row_start[a + 1] - pattern.row_start[a];
+      for (int i = 0; i < 4; ++i)
+        for (int k = pattern.row_start[a]; k < pattern.row_start[a + 1]; ++k) {
+          const EntryPlace at = entry_place(m, 4, true, pattern.row_start[a], degree, i, k - pattern.row_start[a]);
+          for (int j = 0; j < 3; ++j) at.first[j] = value(a, i, pattern.columns[k], j);
+          *at.last = value(a, i, pattern.columns[k], 3);
+          EXPECT_EQ(at.schur != nullptr, i == 3);
+          if (add_schur && at.schur) *at.schur = schur(a, pattern.columns[k]);
+        }
+    }
+    solver.end_assembly();
+    std::vector<double> x(4 * n, 0.0);
+    const SolveStats stats = solver.solve_assembled(b, x);
+    EXPECT_TRUE(stats.converged) << stats.reason;
+    for (int r = 0; r < 4 * n; ++r) EXPECT_NEAR(x[r], exact[r], 1e-8) << "row " << r;
+    return stats.iterations;
+  };
+  const int with_schur = solve(true), pressure_block = solve(false);
+  EXPECT_LE(with_schur, 2);
+  EXPECT_GE(pressure_block, with_schur + 2);
+  std::printf("iterations: %d with the Schur complement, %d with the pressure block alone\n", with_schur,
+              pressure_block);
 }
 
 }  // namespace

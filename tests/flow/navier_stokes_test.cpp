@@ -352,8 +352,9 @@ TEST(NavierStokes, PseudoTransientSteadyReachesPicardsFlow) {
 // then with the stabilization's terms, each step cut back until the residual falls) reach Picard's
 // flow in fewer iterations where convection matters: a 180 degree bend (R 2 mm, bend radius 6 mm)
 // at 2 mL/s, Re ~ 190 by the diameter; both converge in the steady residual (below 1e-8 relative:
-// 1.5e-10 measured, Newton in 13 iterations, Picard in 22), and to the same flow within 1e-6 of the
-// peak (2e-8 measured); Newton's last steps cut the residual more than 10-fold each. (Without the
+// 4.9e-9 measured, Newton in 12 iterations, settled by the residual its last step reached; Picard
+// in 22), and to the same flow within 1e-6 of the peak (2e-8 measured); Newton's last steps cut the
+// residual more than 10-fold each. (Without the
 // stages: 10 iterations here, but steps cut to 1/8 on a carotid bifurcation at Re 300, its residual
 // still 0.18 after 8 iterations; bench/steady_vessels.sh.) (Before: Picard's iterations to a 1e-2 change, then Newton's on the
 // convection alone: 15 iterations; before the linear solves' tolerance was relative to the residual
@@ -384,7 +385,8 @@ TEST(NavierStokes, NewtonSteadyReachesPicardsFlowInFewerIterations) {
   } residuals;
   NavierStokes newton(mesh, fc, residuals);
   const StepReport by_newton = newton.solve_steady();
-  EXPECT_LT(by_newton.change, 1e-8);
+  // Settled by its change, or by the residual its last step reached (below).
+  EXPECT_TRUE(by_newton.change < 1e-8 || by_newton.residual < 1e-8) << by_newton.change;
   const double peak = 2.0 * Q * 1e-6 / (M_PI * R * R * 1e-6);
   double worst = 0.0;
   for (int a = 0; a < mesh.num_points(); ++a)
