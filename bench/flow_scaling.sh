@@ -4,7 +4,8 @@
 # at several resolutions, STEPS time steps of 1 ms from the Stokes flow at 1 mL/s, one process.
 #   bench/flow_scaling.sh [BUILD] [OUT] [STEPS=6] [RESOLUTIONS="0.48 0.326 0.223 0.147"]
 #   (0.48 / 0.326 / 0.223 / 0.147 mm: 36k / 86k / 220k / 420k unknowns; 0.085: about 1.5 M, 9 GB)
-#   PETSC="..." adds PETSc options to the case's [solver] (to compare preconditioners).
+#   PETSC="..." adds PETSc options to the case's [solver] (to compare preconditioners); THREADS=N
+#   sets the assembly's threads ([solver] threads; default automatic: the cores).
 # Printed per mesh: unknowns, seconds a time step (steps 2..STEPS: the first builds the
 # preconditioner), the same per million unknowns and against the smallest mesh's, linear
 # iterations per step, assembly and solve seconds a step, the Stokes start (seconds,

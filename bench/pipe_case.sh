@@ -1,6 +1,7 @@
 # Sourced by the flow benchmarks: the pipe's flow case (blood, 1 mL/s parabolic inflow at the
 # end tagged inlet, zero traction at outlet_1, from the Stokes flow), its mesh pipe.msh beside it.
 #   write_pipe_case FILE DT END SAVE_EVERY [PETSC_OPTIONS]
+#   THREADS=N: the assembly's threads ([solver] threads; default 0, automatic).
 write_pipe_case() {
   cat >"$1" <<EOT
 mesh = "pipe.msh"
@@ -26,5 +27,6 @@ tag = "wall"
 type = "wall"
 [solver]
 petsc_options = "${5:-}"
+threads = ${THREADS:-0}
 EOT
 }

@@ -229,9 +229,10 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
 
   const io::TomlView solver = root["solver"];
   if (solver && !solver.is_table()) r.fail("solver", "expected a table [solver]");
-  if (solver) r.known_keys(*solver.as_table(), "solver", {"petsc_options", "reuse_preconditioner"});
+  if (solver) r.known_keys(*solver.as_table(), "solver", {"petsc_options", "reuse_preconditioner", "threads"});
   c.petsc_options = r.text(solver["petsc_options"], "solver.petsc_options", "");
   c.reuse_preconditioner = r.flag(solver["reuse_preconditioner"], "solver.reuse_preconditioner", true);
+  c.threads = r.integer(solver["threads"], "solver.threads", 0, 0);
 
   const io::TomlView output = root["output"];
   if (output && !output.is_table()) r.fail("output", "expected a table [output]");

@@ -22,7 +22,8 @@
 // or from the Stokes flow of the conditions at t = 0); [boundary] backflow (the traction boundaries' backflow
 // stabilization coefficient, default 1); [solver] reuse_preconditioner = true | false (time steps
 // keep the linear solver's preconditioner while it serves, LinearSolver::reuse_preconditioner;
-// default true); [output] wss_method = "quadratic" | "face" (how the
+// default true), threads = N (the assembly's threads in each process; default 0: the machine's
+// cores on one process, one under MPI; the result is the same whatever N); [output] wss_method = "quadratic" | "face" (how the
 // wall shear stress is taken from the velocity, post/wss.h; default quadratic), checkpoint_every
 // = N (unsteady runs: a checkpoint, flow/checkpoint.h, every N steps, default save_every; 0:
 // only at the last step and when SIGTERM or SIGINT stops the run).
@@ -93,6 +94,7 @@ struct FlowCase {
   std::vector<BoundaryCondition> boundaries;
   std::string petsc_options;
   bool reuse_preconditioner = true;  // [solver]: time steps keep the preconditioner while it serves
+  int threads = 0;  // [solver]: the assembly's threads a process; 0: the cores on one process, 1 under MPI
   std::string wss_method = "quadratic";  // post::parse_wss_method
   int checkpoint_every = 10;             // [output]: steps (default save_every); 0: at the end, on a signal
 };

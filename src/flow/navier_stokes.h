@@ -68,6 +68,7 @@ struct FlowState {
 // processes it shares cells with.
 struct PartitionReport {
   std::vector<int> owned_points, ghost_points, neighbours;
+  int threads = 1;  // the assembly's threads in each process (FlowCase::threads)
 };
 
 struct StepReport {

@@ -343,6 +343,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
 
   if (writer) std::filesystem::create_directories(output_dir);
   const PartitionReport partition = ns.partition();
+  reporter.info(fmt::format("assembly: {} thread{} a process", partition.threads, partition.threads > 1 ? "s" : ""));
   if (ranks > 1) {
     const auto [least, most] = std::minmax_element(partition.owned_points.begin(), partition.owned_points.end());
     const auto [least_ghosts, most_ghosts] =
@@ -412,6 +413,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     parts["ghost_points"] = summary.partition.ghost_points;
     parts["neighbours"] = summary.partition.neighbours;
     j["partition"] = parts;
+    j["assembly_threads"] = summary.partition.threads;
     if (!summary.peak_memory_mb.empty()) j["peak_memory_mb"] = summary.peak_memory_mb;
     j["distribution_peak_memory_mb"] = summary.distribution_memory_mb;
     if (!summary.ends.empty()) {

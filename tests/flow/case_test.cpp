@@ -55,6 +55,7 @@ TEST(FlowCase, ReadsTheContractKeys) {
   EXPECT_EQ(c.petsc_options, "-ksp_rtol 1e-8");
   EXPECT_EQ(c.wss_method, "quadratic");
   EXPECT_TRUE(c.reuse_preconditioner);
+  EXPECT_EQ(c.threads, 0);  // automatic
   EXPECT_NO_THROW(check_tags(c, {"wall", "inlet", "outlet_1"}));
 }
 
@@ -226,6 +227,12 @@ TEST(Waveform, ReadsCsvAndNamesTheBadLine) {
   text.replace(text.find("flow = 5.0"), 10, "waveform = \"good.csv\"");
   const FlowCase c = parse_case(text, folder.path("case.toml"));
   EXPECT_DOUBLE_EQ(c.boundaries[0].flow(1.25), 3.0);
+}
+
+TEST(FlowCase, AssemblyThreads) {
+  EXPECT_EQ(parse_case(std::string(kContract) + "threads = 3\n", "case.toml").threads, 3);
+  expect_error(std::string(kContract) + "threads = -1\n", "solver.threads");
+  expect_error(std::string(kContract) + "threads = \"all\"\n", "solver.threads");
 }
 
 }  // namespace
