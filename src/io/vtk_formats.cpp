@@ -296,8 +296,11 @@ void write_vtu(const std::string& path, const TetMesh& mesh, const std::vector<F
   vtkNew<vtkUnstructuredGrid> grid;
   grid->SetPoints(to_vtk_points(mesh.points));
   const int cells = mesh.num_tets() + mesh.num_prisms() + static_cast<int>(mesh.boundary.size());
-  grid->Allocate(cells);
+  // Exactly the cells' connectivity (Allocate(cells) reserved a point a cell and grew it by
+  // doubling: 20 MB more at 580k tetrahedra).
+  grid->AllocateExact(cells, 4 * mesh.num_tets() + 6 * mesh.num_prisms() + 3 * static_cast<int>(mesh.boundary.size()));
   std::vector<int> tag, layer, column;
+  tag.reserve(cells);
   const bool layers = mesh.has_layers();
   for (int t = 0; t < mesh.num_tets(); ++t) {
     const vtkIdType ids[4] = {mesh.tets[t][0], mesh.tets[t][1], mesh.tets[t][2], mesh.tets[t][3]};
