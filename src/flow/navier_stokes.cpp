@@ -154,7 +154,7 @@ struct NavierStokes::Impl {
   void set_dirichlet(double time);
   // How the convection is linearized at `advect`: Picard's (Oseen) form; Newton's on the Galerkin
   // convection (its (du . grad) u part and the right-hand side that goes with it), the
-  // stabilization's terms in Picard's form; or Newton's on the stabilization's terms too (tau held).
+  // stabilization's terms in Picard's form; or Newton's on the stabilization's terms too (exact).
   enum class Linearization { picard, convection, full };
   void assemble(const std::vector<Vec3>& advect, const std::vector<Vec3>& history, double mass_coefficient,
                 double dt, Linearization linearization = Linearization::picard);
@@ -635,8 +635,8 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
       // Newton's right-hand side gains that part applied to the current flow, V/4 (grad u) ubar.
       // The stabilization's terms are tau_m V c_a r (momentum, SUPG) and tau_m V g_a . r
       // (continuity, PSPG), r = m u + (ubar . grad) u + grad p - h the element's strong residual,
-      // c_a = ubar . g_a: their derivatives in u_b through ubar (tau_m held: the consistent
-      // approximate Jacobian) are tau_m V/4 (g_a[j] r_i + c_a grad(i, j)) and tau_m V/4 (g_a . grad(:, j)),
+      // c_a = ubar . g_a: their derivatives in u_b through ubar (tau_m held; its own derivative
+      // below) are tau_m V/4 (g_a[j] r_i + c_a grad(i, j)) and tau_m V/4 (g_a . grad(:, j)),
       // and Newton's right-hand side gains them applied to the current flow. (Without them Newton's
       // iterations converged only linearly where the stabilization weighs: 0.7 a step on a carotid
       // bifurcation at Re 300.)
@@ -650,16 +650,29 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
       const Vec3 r = m * ubar + convection + grad_p - hbar;
       const double held = stabilization_jacobian ? tau_m : 0.0;
       const Vec3 extra = V / 4.0 * convection;
+      // And the parameters' own derivatives (full): tau_m = (time_term + ubar.G ubar + ...)^-1/2
+      // gives d tau_m / d u_b = -tau_m^3 G ubar / 4, and tau_c = 1 / (tau_m tr G) d tau_c / d u_b
+      // = tau_c tau_m^2 G ubar / 4: rank-one terms on the SUPG and PSPG rows (their residuals
+      // V c_a r and V g_a . r) and the LSIC rows (V g_a div u). (Held, Newton's last steps cut
+      // the residual 4-27-fold on a carotid bifurcation at Re 300.)
+      const Vec3 dtau = stabilization_jacobian ? Vec3(-tau_m * tau_m * tau_m / 4.0 * (G * ubar)) : Vec3::Zero();
+      const double dtau_c_over_dtau = -tau_c / tau_m, divergence = grad.trace(), along = 4.0 * dtau.dot(ubar);
       for (int a = 0; a < 4; ++a) {
         const Vec3 pspg = g[a].transpose() * grad;  // (g_a . grad(:, j))_j
+        Vec3 momentum_tau;  // per row i, what multiplies d tau_m / d u_b
+        for (int i = 0; i < 3; ++i)
+          momentum_tau[i] = V * (c[a] * r[i] + dtau_c_over_dtau * g[a][i] * divergence);
+        const double continuity_tau = V * g[a].dot(r);
         for (int b = 0; b < 4; ++b)
           for (int j = 0; j < 3; ++j) {
             for (int i = 0; i < 3; ++i)
-              K[4 * a + i][4 * b + j] += V / 16.0 * grad(i, j) + held * V / 4.0 * (g[a][j] * r[i] + c[a] * grad(i, j));
-            K[4 * a + 3][4 * b + j] += held * V / 4.0 * pspg[j];
+              K[4 * a + i][4 * b + j] += V / 16.0 * grad(i, j) + held * V / 4.0 * (g[a][j] * r[i] + c[a] * grad(i, j)) +
+                                         momentum_tau[i] * dtau[j];
+            K[4 * a + 3][4 * b + j] += held * V / 4.0 * pspg[j] + continuity_tau * dtau[j];
           }
-        for (int i = 0; i < 3; ++i) F[4 * a + i] += extra[i] + held * V * c[a] * (r[i] + convection[i]);
-        F[4 * a + 3] += held * V * g[a].dot(convection);
+        for (int i = 0; i < 3; ++i)
+          F[4 * a + i] += extra[i] + held * V * c[a] * (r[i] + convection[i]) + momentum_tau[i] * along;
+        F[4 * a + 3] += held * V * g[a].dot(convection) + continuity_tau * along;
       }
     }
 
@@ -953,9 +966,9 @@ StepReport NavierStokes::solve_steady() {
                                  report.change, report.linear_iterations));
     advect = s.u;
     // Newton's iterations (fc.newton) from the first after the Stokes solve, on the convection;
-    // after a whole step, with the stabilization's terms too (each step near the answer cutting the
-    // residual 28-75-fold on the bend of the tests, where the convection's alone converged linearly,
-    // 0.7 a step on a carotid bifurcation at Re 300).
+    // after a whole step, with the stabilization's terms too (near the answer superlinear: 9, 99
+    // and 1040-fold on the bend of the tests, where the convection's alone converged linearly, 0.7
+    // a step on a carotid bifurcation at Re 300).
     if (s.fc.newton && lambda == 1.0)
       level = level == Linearization::picard ? Linearization::convection : Linearization::full;
     // Settled when the step (Newton's whole step where it was cut back) is under the tolerance; a

@@ -111,7 +111,7 @@ class NavierStokes {
   // the last; the Stokes flow at the first stage, then Newton's iterations: on
   // the Galerkin convection (its full Jacobian, the stabilization in Picard's form) and, after a
   // whole step, on the stabilization's terms too (their derivatives through the advecting
-  // velocity, tau held), each step cut back (halved down to kLeastStep) until the steady residual
+  // velocity, the parameters tau_m and tau_c included: the exact Jacobian), each step cut back (halved down to kLeastStep) until the steady residual
   // falls (Armijo's test, the residual evaluated by an assembly at the trial flow); where none does,
   // the iteration again with the linearization below (Newton's on the convection, then Picard's).
   // The iteration has settled when Newton's whole step is under the tolerance at the whole inflow.
