@@ -3,7 +3,7 @@
 # pipe (radius 2 mm, length 20 mm, `vesselmesh volume` defaults: 4 layers over 10 % of the radius)
 # at several resolutions, STEPS time steps of 1 ms from the Stokes flow at 1 mL/s, one process.
 #   bench/flow_scaling.sh [BUILD] [OUT] [STEPS=6] [RESOLUTIONS="0.48 0.326 0.223 0.147"]
-#   (0.48 / 0.326 / 0.223 / 0.147 mm: 36k / 86k / 220k / 420k unknowns; 0.085: about 1.5 M, 9 GB)
+#   (0.48 / 0.326 / 0.223 / 0.147 mm: 36k / 86k / 220k / 420k unknowns; 0.075: 1.40 M, 2.2 GB)
 #   PETSC="..." adds PETSc options to the case's [solver] (to compare preconditioners); THREADS=N
 #   sets the assembly's threads ([solver] threads; default automatic: the cores).
 # Printed per mesh: unknowns, seconds a time step (steps 2..STEPS: the first builds the

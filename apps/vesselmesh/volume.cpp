@@ -3,6 +3,7 @@
 #include "commands.h"
 
 #include "io/msh.h"
+#include "io/msh_stream.h"
 #include "io/vtk_formats.h"
 #include "mesh/error.h"
 #include "mesh/geometry.h"
@@ -277,7 +278,7 @@ Command add_quality_command(CLI::App& parent) {
   add_common_options(*app, o->common);
   return {app, [o] {
             TerminalReporter reporter(o->common.quiet);
-            const TetMesh mesh = volume_format(o->mesh) == VolumeFormat::msh ? io::read_msh_volume(o->mesh)
+            const TetMesh mesh = volume_format(o->mesh) == VolumeFormat::msh ? io::read_msh_volume_lean(o->mesh)
                                                                                : io::read_vtu_volume(o->mesh);
             const volume::VolumeQuality q = volume::measure_volume(mesh);
             if (o->common.json) {
