@@ -693,7 +693,7 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
           for (int j = 0; j < kBlock; ++j) {
             const int column = kBlock * nb + j;
             if (fixed[column]) rhs[row] -= K[4 * a + i][4 * b + j] * dirichlet[column];
-            else (j < 3 ? place_b.first[j] : *place_b.last) += K[4 * a + i][4 * b + j];
+            else place_b[j] += K[4 * a + i][4 * b + j];
             if (j == 3 && place_b.schur && !fixed[column]) *place_b.schur += S[a][b];
           }
         }
@@ -749,7 +749,7 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
           for (int bb = 0; bb < 3; ++bb) {
             const int nb = f.v[bb];
             if (fixed[kBlock * nb + i]) continue;
-            entry(na, i, slot(na, nb)).first[i] += beta * f.area / 12.0 * (a == bb ? 2.0 : 1.0);
+            entry(na, i, slot(na, nb))[i] += beta * f.area / 12.0 * (a == bb ? 2.0 : 1.0);
           }
         }
       }
@@ -764,7 +764,7 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
       double d = std::abs(diagonal[row]);
       if (!(d > 0.0)) d = 1.0;
       const EntryPlace diagonal_place = entry(a, i, slot(a, a));
-      (i < 3 ? diagonal_place.first[i] : *diagonal_place.last) = d;
+      diagonal_place[i] = d;
       rhs[row] = d * dirichlet[row];
     }
   solver->end_assembly();

@@ -241,8 +241,7 @@ TEST(LinearSolver, SchurPreconditioningMatrixOfTheCallersServes) {
       for (int i = 0; i < 4; ++i)
         for (int k = pattern.row_start[a]; k < pattern.row_start[a + 1]; ++k) {
           const EntryPlace at = entry_place(m, 4, true, pattern.row_start[a], degree, i, k - pattern.row_start[a]);
-          for (int j = 0; j < 3; ++j) at.first[j] = value(a, i, pattern.columns[k], j);
-          *at.last = value(a, i, pattern.columns[k], 3);
+          for (int j = 0; j < 4; ++j) at[j] = value(a, i, pattern.columns[k], j);
           EXPECT_EQ(at.schur != nullptr, i == 3);
           if (add_schur && at.schur) *at.schur = schur(a, pattern.columns[k]);
         }
