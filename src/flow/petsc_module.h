@@ -13,7 +13,7 @@ inline constexpr const char* kPetscModuleFile = "libvesselmesh-petsc.so";
 
 // The module's entry points: a LinearSolver made, used and destroyed inside the module; `layout`
 // first, as in io/gmsh_module.h (raise it when this table or a type it passes changes).
-inline constexpr int kPetscCallsLayout = 11;
+inline constexpr int kPetscCallsLayout = 12;
 struct PetscCalls {
   int layout;
   int (*process_count)();
