@@ -17,6 +17,7 @@
 #include <numeric>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace vesselmesh::io {
@@ -156,7 +157,11 @@ struct Reader {
   std::vector<size_t> node_block_start;
   std::vector<long long> node_tags;
   std::vector<Vec3> coordinates;
-  std::vector<int> index_of_tag;  // node tag -> point index (-1: none), once the nodes are placed
+  // Node tag -> point index, once the nodes are placed: an array over the tags' range (-1: none),
+  // or a map where the tags are sparse (a range over 4 times the nodes).
+  std::vector<int> index_of_tag;
+  std::unordered_map<long long, int> sparse_index;
+  bool sparse = false;
   long long least_tag = 0;
   bool nodes_read = false;
   // Elements by entity: tetrahedra and prisms of the volumes, triangles of the surfaces.
@@ -200,8 +205,9 @@ struct Reader {
     const long long total = in.integer("the number of nodes");
     least_tag = in.integer("the least node tag");
     const long long most_tag = in.integer("the largest node tag");
-    if (total < 0 || total > 2'000'000'000 || most_tag < least_tag || most_tag - least_tag > 4'000'000'000LL)
+    if (total < 0 || total > 2'000'000'000 || (total > 0 && most_tag < least_tag))
       in.fail(fmt::format("node counts out of range ({} nodes, tags {} to {})", total, least_tag, most_tag));
+    sparse = most_tag - least_tag >= 4 * total + 1024;
     node_tags.reserve(static_cast<size_t>(total));
     coordinates.reserve(static_cast<size_t>(total));
     for (int b = 0; b < blocks; ++b) {
@@ -229,16 +235,17 @@ struct Reader {
     std::vector<int> order(node_blocks.size());
     std::iota(order.begin(), order.end(), 0);
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return node_blocks[a] < node_blocks[b]; });
-    index_of_tag.assign(static_cast<size_t>(most_tag - least_tag + 1), -1);
+    if (!sparse) index_of_tag.assign(static_cast<size_t>(std::max(0LL, most_tag - least_tag + 1)), -1);
     std::vector<Vec3> points;
     points.reserve(coordinates.size());
     for (int b : order)
       for (size_t k = node_block_start[b]; k < node_block_start[b + 1]; ++k) {
         if (node_tags[k] < least_tag || node_tags[k] > most_tag)
           in.fail(fmt::format("node tag {} is outside the section's range {} to {}", node_tags[k], least_tag, most_tag));
-        int& index = index_of_tag[static_cast<size_t>(node_tags[k] - least_tag)];
-        if (index >= 0) in.fail(fmt::format("node {} is defined twice", node_tags[k]));
-        index = static_cast<int>(points.size());
+        const int next = static_cast<int>(points.size());
+        const bool fresh = sparse ? sparse_index.emplace(node_tags[k], next).second
+                                  : std::exchange(index_of_tag[static_cast<size_t>(node_tags[k] - least_tag)], next) < 0;
+        if (!fresh) in.fail(fmt::format("node {} is defined twice", node_tags[k]));
         points.push_back(coordinates[k]);
       }
     coordinates = std::move(points);
@@ -247,10 +254,15 @@ struct Reader {
   }
 
   int point(long long tag) {
-    const long long k = tag - least_tag;
-    if (k < 0 || k >= static_cast<long long>(index_of_tag.size()) || index_of_tag[static_cast<size_t>(k)] < 0)
-      in.fail(fmt::format("an element uses node {}, which the file does not define", tag));
-    return index_of_tag[static_cast<size_t>(k)];
+    if (sparse) {
+      const auto found = sparse_index.find(tag);
+      if (found != sparse_index.end()) return found->second;
+    } else {
+      const long long k = tag - least_tag;
+      if (k >= 0 && k < static_cast<long long>(index_of_tag.size()) && index_of_tag[static_cast<size_t>(k)] >= 0)
+        return index_of_tag[static_cast<size_t>(k)];
+    }
+    in.fail(fmt::format("an element uses node {}, which the file does not define", tag));
   }
 
   template <size_t N>

@@ -124,6 +124,36 @@ $EndCustom
   EXPECT_EQ(streamed->volume_name, "blood");
 }
 
+// Node tags far apart (a tag range over four times the nodes) are looked up in a map.
+TEST(MshStream, SparseNodeTags) {
+  test::TemporaryFolder tmp;
+  test::write_bytes(tmp.path("s.msh"), R"($MeshFormat
+4.1 0 8
+$EndMeshFormat
+$Nodes
+1 4 7 9000000000
+3 1 0 4
+7
+8
+9000000000
+12
+0 0 0
+1 0 0
+0 1 0
+0 0 1
+$EndNodes
+$Elements
+1 1 1 1
+3 1 4 1
+1 7 8 12 9000000000
+$EndElements
+)");
+  const std::optional<TetMesh> m = read_msh41_volume(tmp.path("s.msh"));
+  ASSERT_TRUE(m.has_value());
+  EXPECT_EQ(m->tets, (std::vector<Tet>{{0, 1, 3, 2}}));
+  EXPECT_EQ(m->points[2], Vec3(0, 1, 0));
+}
+
 // Another version or a binary file is Gmsh's to read (read_msh_volume_lean falls back to it).
 TEST(MshStream, OtherVersionsAreLeftToGmsh) {
   test::TemporaryFolder tmp;
