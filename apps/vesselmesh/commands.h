@@ -41,6 +41,7 @@ Command add_study_command(CLI::App& parent);
 Command add_synth_command(CLI::App& parent);
 Command add_demo_command(CLI::App& parent);
 Command add_windkessel_command(CLI::App& parent);
+Command add_export_command(CLI::App& parent);
 
 // Reading, checking and describing a surface: what `info` does, reused by `demo`.
 struct SurfaceCheckOptions {

@@ -291,6 +291,23 @@ void write_vtp_polylines(const std::string& path, const std::vector<std::vector<
   write_dataset<vtkXMLPolyDataWriter>(path, poly);
 }
 
+void write_vtu_tetrahedra(const std::string& path, const std::vector<Vec3>& points, const std::vector<Tet>& tets,
+                          const std::vector<Field>& point_data, const std::vector<Field>& cell_data) {
+  keep_vtk_errors();
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->SetPoints(to_vtk_points(points));
+  const int cells = static_cast<int>(tets.size());
+  grid->AllocateExact(cells, 4 * cells);
+  for (const Tet& t : tets) {
+    const vtkIdType ids[4] = {t[0], t[1], t[2], t[3]};
+    grid->InsertNextCell(VTK_TETRA, 4, ids);
+  }
+  for (const Field& field : point_data)
+    grid->GetPointData()->AddArray(to_vtk_array(field, static_cast<int>(points.size()), path));
+  for (const Field& field : cell_data) grid->GetCellData()->AddArray(to_vtk_array(field, cells, path));
+  write_dataset<vtkXMLUnstructuredGridWriter>(path, grid);
+}
+
 void write_vtu(const std::string& path, const TetMesh& mesh, const std::vector<Field>& point_data) {
   keep_vtk_errors();
   vtkNew<vtkUnstructuredGrid> grid;

@@ -56,6 +56,11 @@ void write_vtp(const std::string& path, const TriMesh& mesh,
 // the boundary triangles, -1 elsewhere); field data `tag_names` ("<tag> <name>" strings).
 void write_vtu(const std::string& path, const TetMesh& mesh, const std::vector<Field>& point_data = {});
 
+// Tetrahedra alone as VTK XML UnstructuredGrid (binary, compressed, atomically), with point and
+// cell data (sizes must match): for solvers that read one element type (io/export.h).
+void write_vtu_tetrahedra(const std::string& path, const std::vector<Vec3>& points, const std::vector<Tet>& tets,
+                          const std::vector<Field>& point_data, const std::vector<Field>& cell_data);
+
 // A volume mesh written by write_vtu (or any VTU of tetrahedra, wedges and boundary triangles
 // with the integer cell data `tag`): tags named from the field data `tag_names` when present,
 // "tag_<number>" otherwise; `layer` and `column` kept when present. Points are not merged.

@@ -1,0 +1,82 @@
+// vesselmesh export: a volume mesh in the formats of the solvers users run (io/export.h).
+#include "commands.h"
+
+#include "io/export.h"
+#include "io/msh.h"
+#include "io/msh_stream.h"
+#include "io/units.h"
+#include "io/vtk_formats.h"
+#include "mesh/error.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+
+namespace vesselmesh::cli {
+
+Command add_export_command(CLI::App& parent) {
+  CLI::App* app = parent.add_subcommand(
+      "export",
+      "A volume mesh (.msh or .vtu, as 'vesselmesh volume' writes it) for another solver: svfsi (svMultiPhysics / "
+      "SimVascular: OUT/mesh-complete/ with the volume, a .vtp per boundary tag, walls_combined.vtp and the exterior, "
+      "GlobalNodeID and GlobalElementID; OUT/solver.xml, a skeleton naming the faces), vtu (VTK, as 'volume' writes "
+      "it) or medit (INRIA .mesh: vertices, triangles by tag, tetrahedra, prisms). Lengths scaled from the mesh's "
+      "unit (--mesh-units, default mm) to --units (default: m for svfsi, the mesh's unit otherwise)");
+  struct Options {
+    std::string mesh, output, format, units, mesh_units = "mm";
+    CommonOptions common;
+  };
+  auto o = std::make_shared<Options>();
+  app->add_option("VOLUME", o->mesh, "Volume mesh (.msh or .vtu)")->required();
+  app->add_option("-o,--output", o->output, "Output: a folder for svfsi, a file (.vtu, .mesh) otherwise")->required();
+  app->add_option("--format", o->format, "svfsi, vtu or medit")->required();
+  app->add_option("--units", o->units, "Length unit of the output: um, mm, cm or m");
+  app->add_option("--mesh-units", o->mesh_units, "Length unit of the volume mesh (default mm)");
+  add_common_options(*app, o->common);
+  return {app, [o] {
+            TerminalReporter reporter(o->common.quiet);
+            io::ExportFormat format;
+            try {
+              format = io::parse_export_format(o->format);
+            } catch (const InputError& e) {
+              throw OptionError(fmt::format("--format: {}", e.what()));
+            }
+            const io::Unit from = io::parse_unit(o->mesh_units);
+            const io::Unit to =
+                o->units.empty() ? (format == io::ExportFormat::svfsi ? io::Unit::m : from) : io::parse_unit(o->units);
+            const double scale = io::millimetres_per(from) / io::millimetres_per(to);
+            const std::string extension = std::filesystem::path(o->mesh).extension().string();
+            if (extension != ".msh" && extension != ".vtu")
+              throw OptionError(fmt::format("{}: a volume mesh is read from .msh (Gmsh) or .vtu (with cell data `tag`)",
+                                            o->mesh));
+            const std::string reading = "reading " + o->mesh;
+            reporter.progress(reading, 0.0);
+            const TetMesh mesh = extension == ".msh" ? io::read_msh_volume_lean(o->mesh) : io::read_vtu_volume(o->mesh);
+            reporter.progress(reading, 1.0);
+            const std::string writing = fmt::format("writing {} ({})", o->output, io::to_string(format));
+            reporter.progress(writing, 0.0);
+            const io::ExportReport report = io::export_volume(mesh, o->output, format, scale);
+            reporter.progress(writing, 1.0);
+            if (o->common.json) {
+              Json json;
+              json["format"] = io::to_string(format);
+              json["units"] = io::unit_name(to);
+              json["scale"] = scale;
+              json["points"] = report.points;
+              json["tetrahedra"] = report.tetrahedra;
+              json["prisms"] = report.prisms;
+              json["boundary_triangles"] = report.boundary_triangles;
+              json["files"] = report.files;
+              print_json(json);
+            } else {
+              reporter.info(fmt::format("{} points, {} tetrahedra, {} prisms, {} boundary triangles in {} (lengths in "
+                                        "{}, x {:g} from {}); {} file{}",
+                                        report.points, report.tetrahedra, report.prisms, report.boundary_triangles,
+                                        io::to_string(format), io::unit_name(to), scale, io::unit_name(from),
+                                        report.files.size(), report.files.size() == 1 ? "" : "s"));
+            }
+            return 0;
+          }};
+}
+
+}  // namespace vesselmesh::cli

@@ -1,0 +1,265 @@
+#include "io/export.h"
+
+#include "io/atomic_file.h"
+#include "io/vtk_formats.h"
+#include "mesh/error.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <iterator>
+#include <map>
+
+namespace vesselmesh::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<Vec3> scaled(const std::vector<Vec3>& points, double scale) {
+  std::vector<Vec3> out;
+  out.reserve(points.size());
+  for (const Vec3& p : points) out.push_back(p * scale);
+  return out;
+}
+
+std::string tag_name(const TetMesh& mesh, int tag) {
+  const auto named = mesh.tag_names.find(tag);
+  return named != mesh.tag_names.end() ? named->second : mesh::unnamed_tag(tag);
+}
+
+// The tetrahedron each boundary triangle bounds, by the triangle's sorted corners.
+std::vector<int> bounded_tetrahedra(const TetMesh& mesh) {
+  std::map<std::array<int, 3>, int> index;  // sorted corners -> boundary triangle
+  for (size_t f = 0; f < mesh.boundary.size(); ++f) {
+    std::array<int, 3> key = mesh.boundary[f];
+    std::sort(key.begin(), key.end());
+    index.emplace(key, static_cast<int>(f));
+  }
+  std::vector<int> owner(mesh.boundary.size(), -1);
+  for (size_t t = 0; t < mesh.tets.size(); ++t)
+    for (int skip = 0; skip < 4; ++skip) {
+      std::array<int, 3> key{};
+      for (int k = 0, n = 0; k < 4; ++k)
+        if (k != skip) key[n++] = mesh.tets[t][k];
+      std::sort(key.begin(), key.end());
+      const auto found = index.find(key);
+      if (found != index.end()) owner[found->second] = static_cast<int>(t);
+    }
+  for (size_t f = 0; f < owner.size(); ++f)
+    if (owner[f] < 0)
+      throw InputError(fmt::format("boundary triangle {} ({}, {}, {}) bounds no tetrahedron: the volume's boundary "
+                                   "does not match its cells (check it with 'vesselmesh quality')",
+                                   f, mesh.boundary[f][0], mesh.boundary[f][1], mesh.boundary[f][2]));
+  return owner;
+}
+
+// A face file of svMultiPhysics: the chosen boundary triangles with their own points, each point's
+// GlobalNodeID and each triangle's GlobalElementID (1-based) and ModelFaceID (its tag).
+void write_face(const std::string& path, const TetMesh& mesh, const std::vector<Vec3>& points,
+                const std::vector<int>& triangles, const std::vector<int>& owner) {
+  TriMesh face;
+  std::vector<int> local(mesh.points.size(), -1), node_ids, element_ids, face_ids;
+  for (int f : triangles) {
+    Triangle t;
+    for (int k = 0; k < 3; ++k) {
+      const int g = mesh.boundary[f][k];
+      if (local[g] < 0) {
+        local[g] = face.num_points();
+        face.points.push_back(points[g]);
+        node_ids.push_back(g + 1);
+      }
+      t[k] = local[g];
+    }
+    face.triangles.push_back(t);
+    element_ids.push_back(owner[f] + 1);
+    face_ids.push_back(mesh.boundary_tags[f]);
+  }
+  write_vtp(path, face, {Field::labels("GlobalNodeID", node_ids)},
+            {Field::labels("GlobalElementID", element_ids), Field::labels("ModelFaceID", face_ids)});
+}
+
+// A solver.xml to start from: every face named, blood, a parabolic 1 mL/s inflow at the largest
+// face that is not a wall, zero traction at the others, no slip on the walls.
+std::string solver_xml(const std::vector<std::string>& faces, const std::string& inlet, double scale) {
+  std::string out = fmt::format(R"(<?xml version="1.0" encoding="UTF-8" ?>
+<!-- Written by 'vesselmesh export --format svfsi': a skeleton to edit (time, conditions, solver).
+     Lengths in the mesh are in units of {:g} m; density and viscosity below are SI (kg/m3, Pa s),
+     right for a mesh in metres. The inflow (m3/s, negative: into the domain) is a placeholder. -->
+<svMultiPhysicsFile version="0.1">
+<GeneralSimulationParameters>
+  <Continue_previous_simulation> false </Continue_previous_simulation>
+  <Number_of_spatial_dimensions> 3 </Number_of_spatial_dimensions>
+  <Number_of_time_steps> 100 </Number_of_time_steps>
+  <Time_step_size> 0.001 </Time_step_size>
+  <Spectral_radius_of_infinite_time_step> 0.5 </Spectral_radius_of_infinite_time_step>
+  <Save_results_to_VTK_format> true </Save_results_to_VTK_format>
+  <Name_prefix_of_saved_VTK_files> result </Name_prefix_of_saved_VTK_files>
+  <Increment_in_saving_VTK_files> 10 </Increment_in_saving_VTK_files>
+  <Start_saving_after_time_step> 1 </Start_saving_after_time_step>
+  <Verbose> true </Verbose>
+  <Warning> true </Warning>
+  <Debug> false </Debug>
+</GeneralSimulationParameters>
+<Add_mesh name="fluid">
+  <Mesh_file_path> mesh-complete/mesh-complete.mesh.vtu </Mesh_file_path>
+)",
+                                scale);
+  for (const std::string& f : faces)
+    out += fmt::format("  <Add_face name=\"{0}\"> <Face_file_path> mesh-complete/mesh-surfaces/{0}.vtp "
+                       "</Face_file_path> </Add_face>\n",
+                       f);
+  out += R"(</Add_mesh>
+<Add_equation type="fluid">
+  <Coupled> true </Coupled>
+  <Min_iterations> 3 </Min_iterations>
+  <Max_iterations> 5 </Max_iterations>
+  <Tolerance> 1e-4 </Tolerance>
+  <Backflow_stabilization_coefficient> 0.2 </Backflow_stabilization_coefficient>
+  <Density> 1060.0 </Density>
+  <Viscosity model="Constant"> <Value> 0.0035 </Value> </Viscosity>
+  <Output type="Spatial"> <Velocity> true </Velocity> <Pressure> true </Pressure> <WSS> true </WSS> </Output>
+  <LS type="NS">
+    <Linear_algebra type="fsils"> <Preconditioner> fsils </Preconditioner> </Linear_algebra>
+    <Max_iterations> 15 </Max_iterations>
+    <Tolerance> 1e-3 </Tolerance>
+  </LS>
+)";
+  for (const std::string& f : faces) {
+    if (f.rfind("wall", 0) == 0)
+      out += fmt::format("  <Add_BC name=\"{}\"> <Type> Dir </Type> <Time_dependence> Steady </Time_dependence> "
+                         "<Value> 0.0 </Value> </Add_BC>\n",
+                         f);
+    else if (f == inlet)
+      out += fmt::format("  <Add_BC name=\"{}\"> <Type> Dir </Type> <Time_dependence> Steady </Time_dependence> "
+                         "<Value> -1e-6 </Value> <Profile> Parabolic </Profile> <Impose_flux> true </Impose_flux> "
+                         "</Add_BC>\n",
+                         f);
+    else
+      out += fmt::format("  <Add_BC name=\"{}\"> <Type> Neu </Type> <Time_dependence> Steady </Time_dependence> "
+                         "<Value> 0.0 </Value> </Add_BC>\n",
+                         f);
+  }
+  out += "</Add_equation>\n</svMultiPhysicsFile>\n";
+  return out;
+}
+
+ExportReport write_svfsi(const TetMesh& mesh, const fs::path& out, double scale) {
+  if (!mesh.prisms.empty())
+    throw InputError(fmt::format("{}: svMultiPhysics takes one element type and this volume has {} prisms: build it "
+                                 "with 'vesselmesh volume' without --keep-prisms (its prisms cut into tetrahedra)",
+                                 out.string(), mesh.num_prisms()));
+  std::map<int, std::vector<int>> by_tag;
+  for (size_t f = 0; f < mesh.boundary.size(); ++f) by_tag[mesh.boundary_tags[f]].push_back(static_cast<int>(f));
+  for (const auto& [tag, list] : by_tag)
+    if (!is_file_name_safe(tag_name(mesh, tag)))
+      throw InputError(fmt::format("boundary tag {} is named \"{}\", which cannot be a file name: rename it (letters, "
+                                   "digits, '_', '-', '.')",
+                                   tag, tag_name(mesh, tag)));
+  const std::vector<int> owner = bounded_tetrahedra(mesh);
+  const fs::path complete = out / "mesh-complete", surfaces = complete / "mesh-surfaces";
+  fs::create_directories(surfaces);
+  ExportReport report;
+  const std::vector<Vec3> points = scaled(mesh.points, scale);
+  std::vector<int> node_ids(points.size()), element_ids(mesh.tets.size());
+  for (size_t k = 0; k < node_ids.size(); ++k) node_ids[k] = static_cast<int>(k) + 1;
+  for (size_t k = 0; k < element_ids.size(); ++k) element_ids[k] = static_cast<int>(k) + 1;
+  report.files.push_back((complete / "mesh-complete.mesh.vtu").string());
+  write_vtu_tetrahedra(report.files.back(), points, mesh.tets, {Field::labels("GlobalNodeID", node_ids)},
+                       {Field::labels("GlobalElementID", element_ids)});
+  std::vector<int> all(mesh.boundary.size()), walls;
+  for (size_t f = 0; f < all.size(); ++f) all[f] = static_cast<int>(f);
+  report.files.push_back((complete / "mesh-complete.exterior.vtp").string());
+  write_face(report.files.back(), mesh, points, all, owner);
+  std::vector<std::string> faces;
+  std::string inlet;
+  double largest = -1.0;
+  for (const auto& [tag, list] : by_tag) {
+    const std::string name = tag_name(mesh, tag);
+    faces.push_back(name);
+    report.files.push_back((surfaces / (name + ".vtp")).string());
+    write_face(report.files.back(), mesh, points, list, owner);
+    if (name.rfind("wall", 0) == 0) {
+      walls.insert(walls.end(), list.begin(), list.end());
+      continue;
+    }
+    double area = 0.0;
+    for (int f : list) {
+      const Triangle& t = mesh.boundary[f];
+      area += 0.5 * (mesh.points[t[1]] - mesh.points[t[0]]).cross(mesh.points[t[2]] - mesh.points[t[0]]).norm();
+    }
+    if (area > largest) largest = area, inlet = name;
+  }
+  if (!walls.empty()) {
+    std::sort(walls.begin(), walls.end());
+    report.files.push_back((complete / "walls_combined.vtp").string());
+    write_face(report.files.back(), mesh, points, walls, owner);
+  }
+  report.files.push_back((out / "solver.xml").string());
+  write_text(report.files.back(), solver_xml(faces, inlet, scale));
+  return report;
+}
+
+// Medit's .mesh, 1-based: a prism in Gmsh's order (its first triangle facing its second).
+std::string medit_text(const TetMesh& mesh, double scale) {
+  fmt::memory_buffer out;
+  fmt::format_to(std::back_inserter(out), "MeshVersionFormatted 2\nDimension 3\nVertices\n{}\n", mesh.num_points());
+  for (const Vec3& p : mesh.points)
+    fmt::format_to(std::back_inserter(out), "{:.17g} {:.17g} {:.17g} 0\n", p.x() * scale, p.y() * scale, p.z() * scale);
+  fmt::format_to(std::back_inserter(out), "Triangles\n{}\n", mesh.boundary.size());
+  for (size_t f = 0; f < mesh.boundary.size(); ++f) {
+    const Triangle& t = mesh.boundary[f];
+    fmt::format_to(std::back_inserter(out), "{} {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1, mesh.boundary_tags[f]);
+  }
+  fmt::format_to(std::back_inserter(out), "Tetrahedra\n{}\n", mesh.num_tets());
+  for (const Tet& t : mesh.tets)
+    fmt::format_to(std::back_inserter(out), "{} {} {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1, mesh.volume_tag);
+  if (!mesh.prisms.empty()) {
+    fmt::format_to(std::back_inserter(out), "Prisms\n{}\n", mesh.num_prisms());
+    for (const Prism& p : mesh.prisms)
+      fmt::format_to(std::back_inserter(out), "{} {} {} {} {} {} {}\n", p[0] + 1, p[2] + 1, p[1] + 1, p[3] + 1,
+                     p[5] + 1, p[4] + 1, mesh.volume_tag);
+  }
+  fmt::format_to(std::back_inserter(out), "End\n");
+  return fmt::to_string(out);
+}
+
+}  // namespace
+
+ExportFormat parse_export_format(const std::string& name) {
+  if (name == "svfsi") return ExportFormat::svfsi;
+  if (name == "vtu") return ExportFormat::vtu;
+  if (name == "medit") return ExportFormat::medit;
+  throw InputError(fmt::format("export format \"{}\": expected svfsi, vtu or medit", name));
+}
+
+std::string to_string(ExportFormat format) {
+  switch (format) {
+    case ExportFormat::svfsi: return "svfsi";
+    case ExportFormat::vtu: return "vtu";
+    case ExportFormat::medit: return "medit";
+  }
+  return "?";
+}
+
+ExportReport export_volume(const TetMesh& mesh, const std::string& out, ExportFormat format, double scale) {
+  ExportReport report;
+  if (format == ExportFormat::svfsi) {
+    report = write_svfsi(mesh, fs::path(out), scale);
+  } else if (format == ExportFormat::vtu) {
+    TetMesh copy = mesh;
+    copy.points = scaled(mesh.points, scale);
+    write_vtu(out, copy);
+    report.files = {out};
+  } else {
+    write_text(out, medit_text(mesh, scale));
+    report.files = {out};
+  }
+  report.points = mesh.num_points();
+  report.tetrahedra = mesh.num_tets();
+  report.prisms = mesh.num_prisms();
+  report.boundary_triangles = static_cast<int>(mesh.boundary.size());
+  return report;
+}
+
+}  // namespace vesselmesh::io

@@ -1,0 +1,42 @@
+// A volume mesh in the formats of the solvers our users run (issue 33), written by us (no
+// dependency on the solvers): the mesh's points scaled by `scale` (metres per mesh unit, 1e-3 for a
+// mesh in mm to metres), its tags and their names carried through.
+//
+// - svfsi: svMultiPhysics's (svFSIplus, SimVascular) "mesh-complete" folder, as SimVascular's
+//   mesher writes it: OUT/mesh-complete/mesh-complete.mesh.vtu (the tetrahedra; point data
+//   GlobalNodeID, cell data GlobalElementID, both from 1), mesh-complete.exterior.vtp (every
+//   boundary triangle), mesh-surfaces/NAME.vtp per boundary tag and walls_combined.vtp (the tags
+//   named wall*): point data GlobalNodeID (the volume's), cell data GlobalElementID (the
+//   tetrahedron the triangle bounds) and ModelFaceID (the tag); and OUT/solver.xml, a skeleton
+//   naming every face (blood, a parabolic 1 mL/s at the largest non-wall face, zero traction at the
+//   others, no slip on the walls: edit it). svMultiPhysics takes one element type: a volume with
+//   prisms is refused (build it with `volume`'s default, the prisms cut into tetrahedra).
+// - vtu: the volume as `vesselmesh volume` writes it (io::write_vtu), scaled.
+// - medit: INRIA Medit .mesh (MMG, Tetgen's and many FEM codes' input): Vertices, Triangles
+//   (reference: the tag), Tetrahedra and Prisms (reference: the volume's tag; positively oriented,
+//   a prism's first triangle facing its second).
+#pragma once
+
+#include "mesh/tetmesh.h"
+
+#include <string>
+#include <vector>
+
+namespace vesselmesh::io {
+
+enum class ExportFormat { svfsi, vtu, medit };
+
+// "svfsi", "vtu" or "medit"; InputError naming the accepted ones otherwise.
+ExportFormat parse_export_format(const std::string& name);
+std::string to_string(ExportFormat format);
+
+struct ExportReport {
+  std::vector<std::string> files;  // written, in order
+  int points = 0, tetrahedra = 0, prisms = 0, boundary_triangles = 0;
+};
+
+// Writes `mesh` to `out` (a folder for svfsi, a file otherwise), every file whole or not at all.
+// InputError for what the format cannot hold (prisms for svfsi, a tag name unfit for a file name).
+ExportReport export_volume(const TetMesh& mesh, const std::string& out, ExportFormat format, double scale);
+
+}  // namespace vesselmesh::io
