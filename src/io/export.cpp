@@ -200,6 +200,170 @@ ExportReport write_svfsi(const TetMesh& mesh, const fs::path& out, double scale)
   return report;
 }
 
+// OpenFOAM's polyMesh. A cell's faces, each listed out of the cell (its normal by the right-hand
+// rule pointing away from it): a positive tetrahedron's four triangles; a prism's bottom (TetMesh
+// order: facing away from its top), its top reversed and the three sides.
+struct CellFace {
+  std::array<int, 4> v;
+  int n;  // 3 or 4 corners
+};
+std::vector<CellFace> cell_faces(const TetMesh& mesh, size_t cell) {
+  const size_t tets = mesh.tets.size();
+  if (cell < tets) {
+    const Tet& t = mesh.tets[cell];
+    return {{{t[0], t[2], t[1], -1}, 3}, {{t[0], t[1], t[3], -1}, 3}, {{t[1], t[2], t[3], -1}, 3},
+            {{t[0], t[3], t[2], -1}, 3}};
+  }
+  const Prism& p = mesh.prisms[cell - tets];
+  std::vector<CellFace> faces = {{{p[0], p[1], p[2], -1}, 3}, {{p[3], p[5], p[4], -1}, 3}};
+  for (int e = 0; e < 3; ++e) {
+    const int a = e, b = (e + 1) % 3;
+    faces.push_back({{p[a], p[a + 3], p[b + 3], p[b]}, 4});
+  }
+  return faces;
+}
+
+std::array<int, 4> face_key(const CellFace& f) {
+  std::array<int, 4> key = f.v;
+  if (f.n == 3) {
+    key[3] = -1;
+    std::sort(key.begin(), key.begin() + 3);
+  } else {
+    std::sort(key.begin(), key.end());
+  }
+  return key;
+}
+
+std::string foam_header(const std::string& cls, const std::string& object, const std::string& note = "") {
+  return fmt::format(
+      "FoamFile\n{{\n    version     2.0;\n    format      ascii;\n    class       {};\n{}    location    "
+      "\"constant/polyMesh\";\n    object      {};\n}}\n// Written by vesselmesh export\n\n",
+      cls, note.empty() ? "" : fmt::format("    note        \"{}\";\n", note), object);
+}
+
+ExportReport write_openfoam(const TetMesh& mesh, const fs::path& out, double scale) {
+  for (const auto& [tag, name] : mesh.tag_names)
+    if (!is_file_name_safe(name))
+      throw InputError(fmt::format("boundary tag {} is named \"{}\", which cannot be a patch name: rename it", tag, name));
+  const size_t cells = mesh.tets.size() + mesh.prisms.size();
+  // Every face once: the first cell to list it owns it (the lower number), the second is its neighbour.
+  struct Face {
+    CellFace f;
+    int owner, neighbour = -1;
+  };
+  std::vector<Face> faces;
+  std::map<std::array<int, 4>, int> index;
+  for (size_t c = 0; c < cells; ++c)
+    for (const CellFace& f : cell_faces(mesh, c)) {
+      const auto [it, fresh] = index.emplace(face_key(f), static_cast<int>(faces.size()));
+      if (fresh) {
+        faces.push_back({f, static_cast<int>(c)});
+      } else {
+        if (faces[it->second].neighbour >= 0)
+          throw InputError(fmt::format("a face of cell {} is shared by three cells: the volume is not a valid mesh", c));
+        faces[it->second].neighbour = static_cast<int>(c);
+      }
+    }
+  index.clear();
+  // The boundary faces' tags: a triangle's own, a quadrilateral's from a triangle on three of its corners.
+  std::map<std::array<int, 4>, int> tag_of;
+  for (size_t f = 0; f < mesh.boundary.size(); ++f) {
+    std::array<int, 4> key = {mesh.boundary[f][0], mesh.boundary[f][1], mesh.boundary[f][2], -1};
+    std::sort(key.begin(), key.begin() + 3);
+    tag_of.emplace(key, mesh.boundary_tags[f]);
+  }
+  const auto boundary_tag = [&](const CellFace& f) {
+    for (int skip = f.n == 4 ? 0 : -1; skip < (f.n == 4 ? 4 : 0); ++skip) {
+      std::array<int, 4> key = {-1, -1, -1, -1};
+      for (int k = 0, n = 0; k < f.n; ++k)
+        if (k != skip) key[n++] = f.v[k];
+      std::sort(key.begin(), key.begin() + 3);
+      const auto found = tag_of.find(key);
+      if (found != tag_of.end()) return found->second;
+    }
+    throw InputError(fmt::format("a boundary face ({}, {}, {}{}) has no tagged boundary triangle: the volume's boundary "
+                                 "does not match its cells (check it with 'vesselmesh quality')",
+                                 f.v[0], f.v[1], f.v[2], f.n == 4 ? fmt::format(", {}", f.v[3]) : ""));
+  };
+  // Internal faces by (owner, neighbour), then the boundary's by (tag, owner).
+  std::vector<int> internal, boundary;
+  std::vector<int> tag(faces.size(), 0);
+  for (size_t f = 0; f < faces.size(); ++f) {
+    if (faces[f].neighbour >= 0) internal.push_back(static_cast<int>(f));
+    else tag[f] = boundary_tag(faces[f].f), boundary.push_back(static_cast<int>(f));
+  }
+  std::sort(internal.begin(), internal.end(), [&](int a, int b) {
+    return std::pair(faces[a].owner, faces[a].neighbour) < std::pair(faces[b].owner, faces[b].neighbour);
+  });
+  std::stable_sort(boundary.begin(), boundary.end(), [&](int a, int b) {
+    return std::pair(tag[a], faces[a].owner) < std::pair(tag[b], faces[b].owner);
+  });
+
+  const fs::path folder = out / "constant" / "polyMesh";
+  fs::create_directories(folder);
+  ExportReport report;
+  const auto write = [&](const std::string& name, const std::string& text) {
+    report.files.push_back((folder / name).string());
+    write_text(report.files.back(), text);
+  };
+  fmt::memory_buffer text;
+  const auto into = std::back_inserter(text);
+  text.append(foam_header("vectorField", "points"));
+  fmt::format_to(into, "{}\n(\n", mesh.points.size());
+  for (const Vec3& p : mesh.points) fmt::format_to(into, "({:.17g} {:.17g} {:.17g})\n", p.x() * scale, p.y() * scale, p.z() * scale);
+  text.append(std::string_view(")\n"));
+  write("points", fmt::to_string(text));
+
+  text.clear();
+  text.append(foam_header("faceList", "faces"));
+  fmt::format_to(into, "{}\n(\n", faces.size());
+  for (const std::vector<int>* list : {&internal, &boundary})
+    for (int f : *list) {
+      const CellFace& c = faces[f].f;
+      if (c.n == 3) fmt::format_to(into, "3({} {} {})\n", c.v[0], c.v[1], c.v[2]);
+      else fmt::format_to(into, "4({} {} {} {})\n", c.v[0], c.v[1], c.v[2], c.v[3]);
+    }
+  text.append(std::string_view(")\n"));
+  write("faces", fmt::to_string(text));
+
+  const std::string note = fmt::format("nPoints:{} nCells:{} nFaces:{} nInternalFaces:{}", mesh.points.size(), cells,
+                                       faces.size(), internal.size());
+  text.clear();
+  text.append(foam_header("labelList", "owner", note));
+  fmt::format_to(into, "{}\n(\n", faces.size());
+  for (const std::vector<int>* list : {&internal, &boundary})
+    for (int f : *list) fmt::format_to(into, "{}\n", faces[f].owner);
+  text.append(std::string_view(")\n"));
+  write("owner", fmt::to_string(text));
+
+  text.clear();
+  text.append(foam_header("labelList", "neighbour", note));
+  fmt::format_to(into, "{}\n(\n", internal.size());
+  for (int f : internal) fmt::format_to(into, "{}\n", faces[f].neighbour);
+  text.append(std::string_view(")\n"));
+  write("neighbour", fmt::to_string(text));
+
+  text.clear();
+  text.append(foam_header("polyBoundaryMesh", "boundary"));
+  std::vector<std::pair<int, int>> patches;  // tag, faces
+  for (int f : boundary) {
+    if (patches.empty() || patches.back().first != tag[f]) patches.push_back({tag[f], 0});
+    ++patches.back().second;
+  }
+  fmt::format_to(into, "{}\n(\n", patches.size());
+  size_t start = internal.size();
+  for (const auto& [t, count] : patches) {
+    const std::string name = tag_name(mesh, t);
+    fmt::format_to(into, "    {}\n    {{\n        type            {};\n{}        nFaces          {};\n        startFace       {};\n    }}\n",
+                   name, name.rfind("wall", 0) == 0 ? "wall" : "patch",
+                   name.rfind("wall", 0) == 0 ? "        inGroups        List<word> 1(wall);\n" : "", count, start);
+    start += static_cast<size_t>(count);
+  }
+  text.append(std::string_view(")\n"));
+  write("boundary", fmt::to_string(text));
+  return report;
+}
+
 // Medit's .mesh, 1-based: a prism in Gmsh's order (its first triangle facing its second).
 std::string medit_text(const TetMesh& mesh, double scale) {
   fmt::memory_buffer out;
@@ -228,14 +392,16 @@ std::string medit_text(const TetMesh& mesh, double scale) {
 
 ExportFormat parse_export_format(const std::string& name) {
   if (name == "svfsi") return ExportFormat::svfsi;
+  if (name == "openfoam") return ExportFormat::openfoam;
   if (name == "vtu") return ExportFormat::vtu;
   if (name == "medit") return ExportFormat::medit;
-  throw InputError(fmt::format("export format \"{}\": expected svfsi, vtu or medit", name));
+  throw InputError(fmt::format("export format \"{}\": expected svfsi, openfoam, vtu or medit", name));
 }
 
 std::string to_string(ExportFormat format) {
   switch (format) {
     case ExportFormat::svfsi: return "svfsi";
+    case ExportFormat::openfoam: return "openfoam";
     case ExportFormat::vtu: return "vtu";
     case ExportFormat::medit: return "medit";
   }
@@ -246,6 +412,8 @@ ExportReport export_volume(const TetMesh& mesh, const std::string& out, ExportFo
   ExportReport report;
   if (format == ExportFormat::svfsi) {
     report = write_svfsi(mesh, fs::path(out), scale);
+  } else if (format == ExportFormat::openfoam) {
+    report = write_openfoam(mesh, fs::path(out), scale);
   } else if (format == ExportFormat::vtu) {
     TetMesh copy = mesh;
     copy.points = scaled(mesh.points, scale);

@@ -11,6 +11,11 @@
 //   naming every face (blood, a parabolic 1 mL/s at the largest non-wall face, zero traction at the
 //   others, no slip on the walls: edit it). svMultiPhysics takes one element type: a volume with
 //   prisms is refused (build it with `volume`'s default, the prisms cut into tetrahedra).
+// - openfoam: OUT/constant/polyMesh (points, faces, owner, neighbour, boundary; ASCII), one cell per
+//   tetrahedron and per prism: internal faces first in upper-triangular order (by owner, then
+//   neighbour; owner < neighbour, each face's normal out of its owner), then the boundary faces by
+//   patch (a patch per boundary tag, type wall for the tags named wall*, patch otherwise); a prism's
+//   quadrilateral on the boundary takes the tag of the triangles that cover it.
 // - vtu: the volume as `vesselmesh volume` writes it (io::write_vtu), scaled.
 // - medit: INRIA Medit .mesh (MMG, Tetgen's and many FEM codes' input): Vertices, Triangles
 //   (reference: the tag), Tetrahedra and Prisms (reference: the volume's tag; positively oriented,
@@ -24,9 +29,9 @@
 
 namespace vesselmesh::io {
 
-enum class ExportFormat { svfsi, vtu, medit };
+enum class ExportFormat { svfsi, openfoam, vtu, medit };
 
-// "svfsi", "vtu" or "medit"; InputError naming the accepted ones otherwise.
+// "svfsi", "openfoam", "vtu" or "medit"; InputError naming the accepted ones otherwise.
 ExportFormat parse_export_format(const std::string& name);
 std::string to_string(ExportFormat format);
 

@@ -20,6 +20,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <cstdio>
+#include <set>
 #include <sstream>
 
 namespace vesselmesh::io {
@@ -125,6 +127,119 @@ TEST(Export, SvfsiRefusesPrisms) {
     EXPECT_NE(std::string(e.what()).find("--keep-prisms"), std::string::npos) << e.what();
   }
   EXPECT_THROW(parse_export_format("openfoam2"), InputError);
+}
+
+// A polyMesh list: the entries between the parentheses that follow the count after the header.
+std::vector<std::string> foam_list(const std::string& path) {
+  std::istringstream in(read_file(path));
+  std::string line;
+  while (std::getline(in, line) && line != "}") {
+  }
+  int count = -1;
+  while (count < 0 && std::getline(in, line))
+    if (!line.empty() && std::isdigit(static_cast<unsigned char>(line[0]))) count = std::stoi(line);
+  std::getline(in, line);
+  EXPECT_EQ(line, "(") << path;
+  std::vector<std::string> entries(static_cast<size_t>(std::max(count, 0)));
+  for (std::string& e : entries) std::getline(in, e);
+  std::getline(in, line);
+  EXPECT_EQ(line, ")") << path;
+  return entries;
+}
+
+// OpenFOAM's polyMesh, read back and checked for what checkMesh checks first: every face once,
+// owner < neighbour in upper-triangular order, each face's normal out of its owner (into its
+// neighbour), every cell closed (its outward area vectors summing to zero), the boundary faces in
+// contiguous patches after the internal ones, one per tag, the walls of type wall. On tetrahedra
+// and on a volume with prisms (their quadrilaterals at the ends taking the covering triangles' tags).
+TEST(Export, OpenFoamPolyMeshInvariants) {
+  for (bool prisms : {false, true}) {
+    test::TemporaryFolder tmp;
+    const TetMesh mesh = pipe(prisms);
+    export_volume(mesh, tmp.path("foam"), ExportFormat::openfoam, 1e-3);
+    const std::string dir = tmp.path("foam/constant/polyMesh/");
+    const std::vector<std::string> points_text = foam_list(dir + "points"), faces_text = foam_list(dir + "faces"),
+                                   owner_text = foam_list(dir + "owner"), neighbour_text = foam_list(dir + "neighbour");
+    ASSERT_EQ(static_cast<int>(points_text.size()), mesh.num_points());
+    std::vector<Vec3> x;
+    for (const std::string& p : points_text) {
+      Vec3 v;
+      std::sscanf(p.c_str(), "(%lf %lf %lf)", &v[0], &v[1], &v[2]);
+      x.push_back(v);
+    }
+    std::vector<std::vector<int>> faces;
+    for (const std::string& f : faces_text) {
+      std::istringstream in(f.substr(2, f.size() - 3));
+      std::vector<int> v(static_cast<size_t>(f[0] - '0'));
+      for (int& k : v) in >> k;
+      faces.push_back(v);
+    }
+    const int cells = mesh.num_tets() + mesh.num_prisms(), internal = static_cast<int>(neighbour_text.size());
+    ASSERT_EQ(owner_text.size(), faces.size());
+    std::vector<int> owner, neighbour;
+    for (const std::string& o : owner_text) owner.push_back(std::stoi(o));
+    for (const std::string& n : neighbour_text) neighbour.push_back(std::stoi(n));
+    // Cell centres: the mean of their points.
+    std::vector<Vec3> centre(cells, Vec3::Zero());
+    std::vector<std::set<int>> corners(cells);
+    for (size_t f = 0; f < faces.size(); ++f)
+      for (int side = 0; side < (static_cast<int>(f) < internal ? 2 : 1); ++side)
+        for (int k : faces[f]) corners[side ? neighbour[f] : owner[f]].insert(k);
+    for (int c = 0; c < cells; ++c) {
+      ASSERT_EQ(corners[c].size(), c < mesh.num_tets() ? 4u : 6u) << "cell " << c;
+      for (int k : corners[c]) centre[c] += x[k] / static_cast<double>(corners[c].size());
+    }
+    std::set<std::vector<int>> seen;
+    std::vector<Vec3> closure(cells, Vec3::Zero());
+    std::vector<int> face_count(cells, 0);
+    for (size_t f = 0; f < faces.size(); ++f) {
+      std::vector<int> key = faces[f];
+      std::sort(key.begin(), key.end());
+      ASSERT_TRUE(seen.insert(key).second) << "face " << f << " twice";
+      Vec3 area = Vec3::Zero(), middle = Vec3::Zero();  // Newell's area vector
+      for (size_t k = 0; k < faces[f].size(); ++k) {
+        area += 0.5 * x[faces[f][k]].cross(x[faces[f][(k + 1) % faces[f].size()]]);
+        middle += x[faces[f][k]] / static_cast<double>(faces[f].size());
+      }
+      ASSERT_GT(area.dot(middle - centre[owner[f]]), 0.0) << "face " << f << " not out of its owner";
+      closure[owner[f]] += area;
+      ++face_count[owner[f]];
+      if (static_cast<int>(f) < internal) {
+        ASSERT_LT(owner[f], neighbour[f]) << "face " << f;
+        if (f > 0) {
+          ASSERT_LE(std::pair(owner[f - 1], neighbour[f - 1]), std::pair(owner[f], neighbour[f])) << f;
+        }
+        ASSERT_GT(area.dot(centre[neighbour[f]] - middle), 0.0) << "face " << f << " not into its neighbour";
+        closure[neighbour[f]] -= area;
+        ++face_count[neighbour[f]];
+      }
+    }
+    for (int c = 0; c < cells; ++c) {
+      ASSERT_EQ(face_count[c], c < mesh.num_tets() ? 4 : 5) << "cell " << c;
+      ASSERT_LT(closure[c].norm(), 1e-18) << "cell " << c << " not closed";
+    }
+    // The patches: after the internal faces, contiguous, one per tag.
+    const std::string boundary = read_file(dir + "boundary");
+    int start = internal, total = 0;
+    for (const auto& [tag, name] : mesh.tag_names) {
+      const size_t at = boundary.find("    " + name + "\n");
+      ASSERT_NE(at, std::string::npos) << name;
+      const size_t type = boundary.find("type", at), n = boundary.find("nFaces", at), s0 = boundary.find("startFace", at);
+      EXPECT_EQ(boundary.substr(type, boundary.find(';', type) - type).find(name == "wall" ? "wall" : "patch") !=
+                    std::string::npos,
+                true)
+          << name;
+      const int count = std::stoi(boundary.substr(n + 6)), first = std::stoi(boundary.substr(s0 + 9));
+      EXPECT_EQ(first, start) << name;
+      for (int f = first; f < first + count; ++f) EXPECT_GE(f, internal);
+      start += count;
+      total += count;
+    }
+    EXPECT_EQ(total, static_cast<int>(faces.size()) - internal);
+    if (!prisms) {
+      EXPECT_EQ(total, static_cast<int>(mesh.boundary.size()));
+    }
+  }
 }
 
 // Medit's .mesh: every section's count, 1-based corners, references the tags; a prism in Gmsh's
