@@ -573,7 +573,7 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
   const double time_term = dt > 0.0 ? 4.0 / (dt * dt) : 0.0;
 
   // The cells' systems, added to the rows of the owned points in [lo, hi) (a chunk of the
-  // threads' split, cell_chunks): each row's in the cells' order, whatever the chunk.
+  // threads' split, chunk_cells): each row's in the cells' order, whatever the chunk.
   const auto add_cell = [&](size_t e, int lo, int hi) {
     double K[16][16];
     double F[16];
@@ -651,8 +651,8 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
       const double held = stabilization_jacobian ? tau_m : 0.0;
       const Vec3 extra = V / 4.0 * convection;
       // And the parameters' own derivatives (full): tau_m = (time_term + ubar.G ubar + ...)^-1/2
-      // gives d tau_m / d u_b = -tau_m^3 G ubar / 4, and tau_c = 1 / (tau_m tr G) d tau_c / d u_b
-      // = tau_c tau_m^2 G ubar / 4: rank-one terms on the SUPG and PSPG rows (their residuals
+      // gives d tau_m / d u_b = -tau_m^3 G ubar / 4, and, tau_c being 1 / (tau_m tr G),
+      // d tau_c / d u_b = tau_c tau_m^2 G ubar / 4: rank-one terms on the SUPG and PSPG rows (their residuals
       // V c_a r and V g_a . r) and the LSIC rows (V g_a div u). (Held, Newton's last steps cut
       // the residual 4-27-fold on a carotid bifurcation at Re 300.)
       const Vec3 dtau = stabilization_jacobian ? Vec3(-tau_m * tau_m * tau_m / 4.0 * (G * ubar)) : Vec3::Zero();
