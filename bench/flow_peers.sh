@@ -11,7 +11,8 @@
 # field written into their initial conditions), so the wall shear stress after STEPS steps is
 # compared with Poiseuille's 4 mu Q / (pi R^3) on the middle half of the pipe. R is the radius of
 # the meshed pipe's cross-section (from its volume: the polygonal pipe is a little narrower).
-# Meshes: ours and svFSIplus take the tetrahedra (each prism cut in three); pimpleFoam runs on
+# Meshes: ours and svFSIplus take the tetrahedra (each prism cut in three); pimpleFoam runs (its
+# constant/polyMesh from `vesselmesh export --format openfoam`) on
 # the layer's prisms (the same points; its WSS on pure tetrahedra is far worse) and, for the
 # same-mesh figure, on the tetrahedra too.
 # Printed: DOFs (4 per node for the FE codes, 4 per cell for FV), seconds per step (the first
@@ -93,7 +94,6 @@ openfoam_case() {  # openfoam_case DIR MESH.msh
   local dir=$1
   rm -rf "$dir"
   mkdir -p "$dir/system" "$dir/constant" "$dir/0"
-  gmsh "$2" -0 -format msh22 -o "$dir/mesh.msh" >/dev/null
   cat >"$dir/system/controlDict" <<EOF
 FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }
 application pimpleFoam;
@@ -129,10 +129,6 @@ solvers
 PIMPLE { momentumPredictor yes; nOuterCorrectors 1; nCorrectors 2; nNonOrthogonalCorrectors 1;
          pRefCell 0; pRefValue 0; }
 EOF
-  cat >"$dir/system/changeDictionaryDict" <<'EOF'
-FoamFile { version 2.0; format ascii; class dictionary; object changeDictionaryDict; }
-boundary { wall { type wall; } }
-EOF
   cat >"$dir/system/decomposeParDict" <<EOF
 FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }
 numberOfSubdomains $np;
@@ -148,13 +144,9 @@ EOF
 FoamFile { version 2.0; format ascii; class dictionary; object turbulenceProperties; }
 simulationType laminar;
 EOF
-  (
-    cd "$dir"
-    gmshToFoam mesh.msh -case . >prepare.log 2>&1
-    transformPoints -case . -scale '(0.001 0.001 0.001)' >>prepare.log 2>&1
-    changeDictionary -case . >>prepare.log 2>&1
-    postProcess -case . -func writeCellCentres -time 0 >>prepare.log 2>&1
-  )
+  # The mesh from our own export (constant/polyMesh in metres, the wall patch of type wall).
+  "$vm" export "$2" -o "$dir" --format openfoam -q
+  (cd "$dir" && postProcess -case . -func writeCellCentres -time 0 >prepare.log 2>&1)
   "$tool" openfoam-fields "$dir" "$(python3 -c "print($radius * 1e-3)")" "$(python3 -c "print($flow_ml * 1e-6)")" >/dev/null
 }
 openfoam_run() {  # openfoam_run DIR NAME NP -> DIR/NAME.txt
@@ -175,7 +167,7 @@ openfoam_run() {  # openfoam_run DIR NAME NP -> DIR/NAME.txt
   fi
 }
 openfoam_meshes="prisms tets"
-if ! command -v pimpleFoam >/dev/null || ! command -v gmshToFoam >/dev/null; then
+if ! command -v pimpleFoam >/dev/null; then
   echo "pimpleFoam not found (apt-get install openfoam): no OpenFOAM figures" >&2
   openfoam_meshes=""
 fi
