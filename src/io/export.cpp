@@ -16,6 +16,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Makes `folder` (and its parents); InputError naming it when it cannot be made (a file in the way,
+// no permission).
+void make_folder(const fs::path& folder) {
+  std::error_code error;
+  fs::create_directories(folder, error);
+  if (error || !fs::is_directory(folder))
+    throw InputError(fmt::format("{}: cannot make the folder: {}; choose another output (-o)", folder.string(),
+                                 error ? error.message() : "a file is in the way"));
+}
+
 std::vector<Vec3> scaled(const std::vector<Vec3>& points, double scale) {
   std::vector<Vec3> out;
   out.reserve(points.size());
@@ -158,7 +168,7 @@ ExportReport write_svfsi(const TetMesh& mesh, const fs::path& out, double scale)
                                    tag, tag_name(mesh, tag)));
   const std::vector<int> owner = bounded_tetrahedra(mesh);
   const fs::path complete = out / "mesh-complete", surfaces = complete / "mesh-surfaces";
-  fs::create_directories(surfaces);
+  make_folder(surfaces);
   ExportReport report;
   const std::vector<Vec3> points = scaled(mesh.points, scale);
   std::vector<int> node_ids(points.size()), element_ids(mesh.tets.size());
@@ -300,7 +310,7 @@ ExportReport write_openfoam(const TetMesh& mesh, const fs::path& out, double sca
   });
 
   const fs::path folder = out / "constant" / "polyMesh";
-  fs::create_directories(folder);
+  make_folder(folder);
   ExportReport report;
   const auto write = [&](const std::string& name, const std::string& text) {
     report.files.push_back((folder / name).string());

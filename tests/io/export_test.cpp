@@ -117,7 +117,8 @@ TEST(Export, SvfsiMeshCompleteReadBackByVtk) {
   EXPECT_EQ(parabolic, 1u);
 }
 
-// svMultiPhysics takes one element type: a volume with prisms is refused, saying how to build one.
+// svMultiPhysics takes one element type: a volume with prisms is refused, saying how to build one;
+// an output that cannot be a folder is an input error.
 TEST(Export, SvfsiRefusesPrisms) {
   test::TemporaryFolder tmp;
   try {
@@ -127,6 +128,11 @@ TEST(Export, SvfsiRefusesPrisms) {
     EXPECT_NE(std::string(e.what()).find("--keep-prisms"), std::string::npos) << e.what();
   }
   EXPECT_THROW(parse_export_format("openfoam2"), InputError);
+  // A file where the output folder would be: an InputError naming it, nothing written.
+  write_text(tmp.path("taken"), "x");
+  EXPECT_THROW(export_volume(pipe(), tmp.path("taken"), ExportFormat::openfoam, 1e-3), InputError);
+  EXPECT_THROW(export_volume(pipe(), tmp.path("taken"), ExportFormat::svfsi, 1e-3), InputError);
+  EXPECT_EQ(read_file(tmp.path("taken")), "x");
 }
 
 // A polyMesh list: the entries between the parentheses that follow the count after the header.
