@@ -2,15 +2,12 @@
 #include "commands.h"
 
 #include "io/export.h"
-#include "io/msh.h"
-#include "io/msh_stream.h"
 #include "io/units.h"
-#include "io/vtk_formats.h"
+#include "io/volume_file.h"
 #include "mesh/error.h"
 
 #include <fmt/format.h>
 
-#include <filesystem>
 
 namespace vesselmesh::cli {
 
@@ -47,13 +44,9 @@ Command add_export_command(CLI::App& parent) {
             const io::Unit to =
                 o->units.empty() ? (format == io::ExportFormat::svfsi || format == io::ExportFormat::openfoam ? io::Unit::m : from) : io::parse_unit(o->units);
             const double scale = io::millimetres_per(from) / io::millimetres_per(to);
-            const std::string extension = std::filesystem::path(o->mesh).extension().string();
-            if (extension != ".msh" && extension != ".vtu")
-              throw OptionError(fmt::format("{}: a volume mesh is read from .msh (Gmsh) or .vtu (with cell data `tag`)",
-                                            o->mesh));
             const std::string reading = "reading " + o->mesh;
             reporter.progress(reading, 0.0);
-            const TetMesh mesh = extension == ".msh" ? io::read_msh_volume_lean(o->mesh) : io::read_vtu_volume(o->mesh);
+            const TetMesh mesh = io::read_volume(o->mesh);
             reporter.progress(reading, 1.0);
             const std::string writing = fmt::format("writing {} ({})", o->output, io::to_string(format));
             reporter.progress(writing, 0.0);

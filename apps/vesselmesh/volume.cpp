@@ -3,7 +3,7 @@
 #include "commands.h"
 
 #include "io/msh.h"
-#include "io/msh_stream.h"
+#include "io/volume_file.h"
 #include "io/vtk_formats.h"
 #include "mesh/error.h"
 #include "mesh/geometry.h"
@@ -278,8 +278,8 @@ Command add_quality_command(CLI::App& parent) {
   add_common_options(*app, o->common);
   return {app, [o] {
             TerminalReporter reporter(o->common.quiet);
-            const TetMesh mesh = volume_format(o->mesh) == VolumeFormat::msh ? io::read_msh_volume_lean(o->mesh)
-                                                                               : io::read_vtu_volume(o->mesh);
+            volume_format(o->mesh);  // .msh or .vtu, else an option error
+            const TetMesh mesh = io::read_volume(o->mesh);
             const volume::VolumeQuality q = volume::measure_volume(mesh);
             if (o->common.json) {
               Json json = quality_json(q);

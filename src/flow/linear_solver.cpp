@@ -554,7 +554,7 @@ MatrixValues LinearSolver::begin_assembly() {
     }
   for (auto [part, values] : {std::pair{s.schur_own, &m.schur_own}, std::pair{s.schur_other, &m.schur_other}}) {
     if (!part) continue;
-    check(MatSeqAIJGetArray(part, values), "MatSeqAIJGetArray");
+    get_values(part, values);
     MatInfo info{};
     check(MatGetInfo(part, MAT_LOCAL, &info), "MatGetInfo");
     std::fill(*values, *values + static_cast<size_t>(info.nz_used), 0.0);
@@ -575,7 +575,7 @@ void LinearSolver::end_assembly() {
     MatInfo info{};
     check(MatGetInfo(part, MAT_LOCAL, &info), "MatGetInfo");
     for (size_t k = 0; k < static_cast<size_t>(info.nz_used); ++k) (*values)[k] += block[k];
-    check(MatSeqAIJRestoreArray(part, values), "MatSeqAIJRestoreArray");
+    restore_values(part, values);
   }
   if (s.schur) {
     check(MatAssemblyBegin(s.schur, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");

@@ -5,7 +5,7 @@
 #include "flow/navier_stokes.h"
 #include "io/atomic_file.h"
 #include "io/msh.h"
-#include "io/msh_stream.h"
+#include "io/volume_file.h"
 #include "io/vtk_formats.h"
 #include "mesh/error.h"
 #include "post/indices.h"
@@ -58,8 +58,7 @@ TetMesh read_mesh(const FlowCase& c) {
   const std::string ext = std::filesystem::path(c.mesh).extension().string();
   if (!std::filesystem::exists(c.mesh))
     throw InputError(fmt::format("{}: mesh \"{}\" does not exist (paths are relative to the case file)", c.path, c.mesh));
-  if (ext == ".msh") return io::read_msh_volume_lean(c.mesh);
-  if (ext == ".vtu") return io::read_vtu_volume(c.mesh);
+  if (ext == ".msh" || ext == ".vtu") return io::read_volume(c.mesh);
   throw InputError(fmt::format("{}: mesh \"{}\": a volume mesh is read from .msh (Gmsh) or .vtu (with cell data "
                                "`tag`), as `vesselmesh volume` writes them",
                                c.path, c.mesh));

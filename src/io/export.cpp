@@ -38,54 +38,17 @@ std::string tag_name(const TetMesh& mesh, int tag) {
   return named != mesh.tag_names.end() ? named->second : mesh::unnamed_tag(tag);
 }
 
-// The tetrahedron each boundary triangle bounds, by the triangle's sorted corners.
-std::vector<int> bounded_tetrahedra(const TetMesh& mesh) {
-  std::map<std::array<int, 3>, int> index;  // sorted corners -> boundary triangle
-  for (size_t f = 0; f < mesh.boundary.size(); ++f) {
-    std::array<int, 3> key = mesh.boundary[f];
-    std::sort(key.begin(), key.end());
-    index.emplace(key, static_cast<int>(f));
-  }
-  std::vector<int> owner(mesh.boundary.size(), -1);
-  for (size_t t = 0; t < mesh.tets.size(); ++t)
-    for (int skip = 0; skip < 4; ++skip) {
-      std::array<int, 3> key{};
-      for (int k = 0, n = 0; k < 4; ++k)
-        if (k != skip) key[n++] = mesh.tets[t][k];
-      std::sort(key.begin(), key.end());
-      const auto found = index.find(key);
-      if (found != index.end()) owner[found->second] = static_cast<int>(t);
-    }
-  for (size_t f = 0; f < owner.size(); ++f)
-    if (owner[f] < 0)
-      throw InputError(fmt::format("boundary triangle {} ({}, {}, {}) bounds no tetrahedron: the volume's boundary "
-                                   "does not match its cells (check it with 'vesselmesh quality')",
-                                   f, mesh.boundary[f][0], mesh.boundary[f][1], mesh.boundary[f][2]));
-  return owner;
-}
-
-// A face file of svMultiPhysics: the chosen boundary triangles with their own points, each point's
-// GlobalNodeID and each triangle's GlobalElementID (1-based) and ModelFaceID (its tag).
-void write_face(const std::string& path, const TetMesh& mesh, const std::vector<Vec3>& points,
-                const std::vector<int>& triangles, const std::vector<int>& owner) {
-  TriMesh face;
-  std::vector<int> local(mesh.points.size(), -1), node_ids, element_ids, face_ids;
-  for (int f : triangles) {
-    Triangle t;
-    for (int k = 0; k < 3; ++k) {
-      const int g = mesh.boundary[f][k];
-      if (local[g] < 0) {
-        local[g] = face.num_points();
-        face.points.push_back(points[g]);
-        node_ids.push_back(g + 1);
-      }
-      t[k] = local[g];
-    }
-    face.triangles.push_back(t);
-    element_ids.push_back(owner[f] + 1);
-    face_ids.push_back(mesh.boundary_tags[f]);
-  }
-  write_vtp(path, face, {Field::labels("GlobalNodeID", node_ids)},
+// A face file of svMultiPhysics: boundary triangles (mesh::boundary_part) with their own points, each
+// point's GlobalNodeID and each triangle's GlobalElementID (the tetrahedron it bounds; from 1) and
+// ModelFaceID (its tag).
+void write_face(const std::string& path, mesh::BoundaryPart face, double scale) {
+  for (Vec3& p : face.mesh.points) p *= scale;
+  std::vector<int> node_ids, element_ids;
+  for (int v : face.volume_point) node_ids.push_back(v + 1);
+  for (int t : face.tet) element_ids.push_back(t + 1);
+  const std::vector<int> face_ids = std::move(face.mesh.labels);
+  face.mesh.labels.clear();
+  write_vtp(path, face.mesh, {Field::labels("GlobalNodeID", node_ids)},
             {Field::labels("GlobalElementID", element_ids), Field::labels("ModelFaceID", face_ids)});
 }
 
@@ -166,7 +129,11 @@ ExportReport write_svfsi(const TetMesh& mesh, const fs::path& out, double scale)
       throw InputError(fmt::format("boundary tag {} is named \"{}\", which cannot be a file name: rename it (letters, "
                                    "digits, '_', '-', '.')",
                                    tag, tag_name(mesh, tag)));
-  const std::vector<int> owner = bounded_tetrahedra(mesh);
+  // Every boundary triangle with the tetrahedron it bounds, before anything is written (an error
+  // here leaves no file).
+  std::vector<int> all;
+  for (const auto& [tag, list] : by_tag) all.push_back(tag);
+  mesh::BoundaryPart exterior = mesh::boundary_part(mesh, mesh.tets, all);
   const fs::path complete = out / "mesh-complete", surfaces = complete / "mesh-surfaces";
   make_folder(surfaces);
   ExportReport report;
@@ -177,10 +144,9 @@ ExportReport write_svfsi(const TetMesh& mesh, const fs::path& out, double scale)
   report.files.push_back((complete / "mesh-complete.mesh.vtu").string());
   write_vtu_tetrahedra(report.files.back(), points, mesh.tets, {Field::labels("GlobalNodeID", node_ids)},
                        {Field::labels("GlobalElementID", element_ids)});
-  std::vector<int> all(mesh.boundary.size()), walls;
-  for (size_t f = 0; f < all.size(); ++f) all[f] = static_cast<int>(f);
   report.files.push_back((complete / "mesh-complete.exterior.vtp").string());
-  write_face(report.files.back(), mesh, points, all, owner);
+  write_face(report.files.back(), std::move(exterior), scale);
+  std::vector<int> walls;
   std::vector<std::string> faces;
   std::string inlet;
   double largest = -1.0;
@@ -188,9 +154,9 @@ ExportReport write_svfsi(const TetMesh& mesh, const fs::path& out, double scale)
     const std::string name = tag_name(mesh, tag);
     faces.push_back(name);
     report.files.push_back((surfaces / (name + ".vtp")).string());
-    write_face(report.files.back(), mesh, points, list, owner);
+    write_face(report.files.back(), mesh::boundary_part(mesh, mesh.tets, {tag}), scale);
     if (name.rfind("wall", 0) == 0) {
-      walls.insert(walls.end(), list.begin(), list.end());
+      walls.push_back(tag);
       continue;
     }
     double area = 0.0;
@@ -201,9 +167,8 @@ ExportReport write_svfsi(const TetMesh& mesh, const fs::path& out, double scale)
     if (area > largest) largest = area, inlet = name;
   }
   if (!walls.empty()) {
-    std::sort(walls.begin(), walls.end());
     report.files.push_back((complete / "walls_combined.vtp").string());
-    write_face(report.files.back(), mesh, points, walls, owner);
+    write_face(report.files.back(), mesh::boundary_part(mesh, mesh.tets, walls), scale);
   }
   report.files.push_back((out / "solver.xml").string());
   write_text(report.files.back(), solver_xml(faces, inlet, scale));
@@ -390,9 +355,11 @@ std::string medit_text(const TetMesh& mesh, double scale) {
     fmt::format_to(std::back_inserter(out), "{} {} {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1, mesh.volume_tag);
   if (!mesh.prisms.empty()) {
     fmt::format_to(std::back_inserter(out), "Prisms\n{}\n", mesh.num_prisms());
-    for (const Prism& p : mesh.prisms)
-      fmt::format_to(std::back_inserter(out), "{} {} {} {} {} {} {}\n", p[0] + 1, p[2] + 1, p[1] + 1, p[3] + 1,
-                     p[5] + 1, p[4] + 1, mesh.volume_tag);
+    for (const Prism& prism : mesh.prisms) {
+      const Prism p = mesh::flipped_prism(prism);
+      fmt::format_to(std::back_inserter(out), "{} {} {} {} {} {} {}\n", p[0] + 1, p[1] + 1, p[2] + 1, p[3] + 1,
+                     p[4] + 1, p[5] + 1, mesh.volume_tag);
+    }
   }
   fmt::format_to(std::back_inserter(out), "End\n");
   return fmt::to_string(out);

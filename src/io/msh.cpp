@@ -15,8 +15,6 @@ namespace vesselmesh::io {
 namespace {
 constexpr int kTriangle3 = 2;  // Gmsh element types
 constexpr int kTetrahedron4 = 4, kPrism6 = 6;
-// TetMesh prisms have the wall triangle facing away from the top; Gmsh's face toward it.
-Prism gmsh_prism(const Prism& p) { return {p[0], p[2], p[1], p[3], p[5], p[4]}; }
 
 // Node tags 1, 2, ... (our index + 1) and xyz coordinates of every point.
 void gmsh_nodes(const std::vector<Vec3>& points, std::vector<std::size_t>& tags, std::vector<double>& coords) {
@@ -189,7 +187,7 @@ void write_msh(const std::string& path, const TetMesh& mesh) {
     element_nodes.clear();
     for (const Prism& p : mesh.prisms) {
       element_tags.push_back(element++);
-      for (int v : gmsh_prism(p)) element_nodes.push_back(static_cast<std::size_t>(v) + 1);
+      for (int v : mesh::flipped_prism(p)) element_nodes.push_back(static_cast<std::size_t>(v) + 1);
     }
     if (!element_tags.empty()) gmsh::model::mesh::addElementsByType(1, kPrism6, element_tags, element_nodes);
     gmsh::model::addPhysicalGroup(3, {1}, mesh.volume_tag);
@@ -240,7 +238,7 @@ TetMesh read_msh_volume(const std::string& path) {
       for (size_t e = 0; e < tags.size(); ++e) {
         Prism p;
         corners(nodes, e, 6, p.data());
-        mesh.prisms.push_back(gmsh_prism(p));
+        mesh.prisms.push_back(mesh::flipped_prism(p));
       }
     }
     gmsh::model::getEntities(entities, 2);

@@ -1,6 +1,5 @@
 #include "io/msh_stream.h"
 
-#include "io/msh.h"
 #include "mesh/error.h"
 
 #include <fmt/format.h>
@@ -26,6 +25,8 @@ namespace {
 constexpr int kTriangle3 = 2, kTetrahedron4 = 4, kPrism6 = 6;  // Gmsh element types
 
 // Whitespace-separated words of a file read in blocks; a word is valid until the next call.
+// (io/text_cursor.h reads a text held whole in memory: for a 2 M-tetrahedron mesh that is the
+// 90 MB file on top of the mesh, which this reader exists to avoid.)
 class Words {
  public:
   explicit Words(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "rb"), &std::fclose) {
@@ -307,9 +308,6 @@ struct Reader {
   }
 };
 
-// Gmsh's prism (the bottom triangle facing the top) in TetMesh's order, as io::read_msh_volume.
-Prism from_gmsh(const Prism& p) { return {p[0], p[2], p[1], p[3], p[5], p[4]}; }
-
 }  // namespace
 
 std::optional<TetMesh> read_msh41_volume(const std::string& path) {
@@ -364,7 +362,7 @@ std::optional<TetMesh> read_msh41_volume(const std::string& path) {
     if (mesh.tets.empty()) mesh.tets = std::move(t);
     else mesh.tets.insert(mesh.tets.end(), t.begin(), t.end());
     std::vector<Tet>().swap(t);
-    for (const Prism& p : r.prisms[entity]) mesh.prisms.push_back(from_gmsh(p));
+    for (const Prism& p : r.prisms[entity]) mesh.prisms.push_back(mesh::flipped_prism(p));
   }
   // The surface entities by tag, those without triangles named too.
   std::vector<int> surfaces = r.surfaces;
@@ -383,11 +381,6 @@ std::optional<TetMesh> read_msh41_volume(const std::string& path) {
   if (mesh.tets.empty() && mesh.prisms.empty())
     throw InputError(fmt::format("{}: the MSH file has no tetrahedra or prisms (a volume mesh is needed)", path));
   return mesh;
-}
-
-TetMesh read_msh_volume_lean(const std::string& path) {
-  std::optional<TetMesh> mesh = read_msh41_volume(path);
-  return mesh ? std::move(*mesh) : read_msh_volume(path);
 }
 
 }  // namespace vesselmesh::io

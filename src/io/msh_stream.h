@@ -4,7 +4,7 @@
 // through Gmsh's API that took about 0.45 KB a tetrahedron at its peak (266 MB at 580k
 // tetrahedra: 20-23 GB for a 50 M-tetrahedron cluster mesh) and left Gmsh's libraries mapped
 // (40 MB). Read here, the file goes by in 1 MB blocks and only the mesh stays: about 30 bytes a
-// tetrahedron. Gmsh stays the reader of every other MSH file (io/msh.h).
+// tetrahedron. Gmsh stays the reader of every other MSH file (io/msh.h; io/volume_file.h chooses).
 #pragma once
 
 #include "mesh/tetmesh.h"
@@ -22,8 +22,5 @@ namespace vesselmesh::io {
 // Other elements and sections are skipped. std::nullopt when the file is another version or binary
 // (the caller reads those with Gmsh); InputError naming the file and line for a broken file.
 std::optional<TetMesh> read_msh41_volume(const std::string& path);
-
-// A volume mesh from any MSH file: read_msh41_volume's, else Gmsh's (io::read_msh_volume).
-TetMesh read_msh_volume_lean(const std::string& path);
 
 }  // namespace vesselmesh::io

@@ -2,9 +2,12 @@
 
 #include "mesh/error.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <map>
 #include <numbers>
 
 namespace vesselmesh::mesh {
@@ -154,6 +157,49 @@ BoundaryClosure boundary_closure(const TetMesh& m, const std::vector<Tet>& all) 
   std::set_difference(boundary.begin(), boundary.end(), faces.begin(), faces.end(), std::back_inserter(difference));
   out.stray_triangles = static_cast<int>(difference.size());
   return out;
+}
+
+BoundaryPart boundary_part(const TetMesh& mesh, const std::vector<Tet>& tetrahedra, const std::vector<int>& tags) {
+  BoundaryPart wall;
+  std::map<std::array<int, 3>, int> face_of;  // sorted corners -> wall triangle
+  std::vector<int> renumber(mesh.points.size(), -1);
+  for (size_t f = 0; f < mesh.boundary.size(); ++f) {
+    if (std::find(tags.begin(), tags.end(), mesh.boundary_tags[f]) == tags.end()) continue;
+    Triangle tri = mesh.boundary[f];
+    std::array<int, 3> key = tri;
+    std::sort(key.begin(), key.end());
+    face_of[key] = static_cast<int>(wall.mesh.triangles.size());
+    for (int& v : tri) {
+      if (renumber[v] < 0) {
+        renumber[v] = static_cast<int>(wall.mesh.points.size());
+        wall.mesh.points.push_back(mesh.points[v]);
+        wall.volume_point.push_back(v);
+      }
+      v = renumber[v];
+    }
+    wall.mesh.triangles.push_back(tri);
+    wall.mesh.labels.push_back(mesh.boundary_tags[f]);
+  }
+  wall.tet.assign(wall.mesh.triangles.size(), -1);
+  static constexpr int kFaces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+  for (size_t e = 0; e < tetrahedra.size(); ++e) {
+    int on = 0;  // corners on the part: a face of it needs three
+    for (int v : tetrahedra[e]) on += renumber[v] >= 0;
+    if (on < 3) continue;
+    for (const auto& face : kFaces) {
+      std::array<int, 3> key = {tetrahedra[e][face[0]], tetrahedra[e][face[1]], tetrahedra[e][face[2]]};
+      std::sort(key.begin(), key.end());
+      const auto it = face_of.find(key);
+      if (it != face_of.end()) wall.tet[it->second] = static_cast<int>(e);
+    }
+  }
+  for (size_t f = 0; f < wall.tet.size(); ++f)
+    if (wall.tet[f] < 0) {
+      const Vec3& p = wall.mesh.points[wall.mesh.triangles[f][0]];
+      throw InputError(fmt::format("boundary triangle {} (at ({:.4g}, {:.4g}, {:.4g})) bounds no cell of the mesh", f,
+                                   p.x(), p.y(), p.z()));
+    }
+  return wall;
 }
 
 }  // namespace vesselmesh::mesh

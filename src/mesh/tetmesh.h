@@ -92,6 +92,21 @@ Triangle canonical_rotation(const Triangle& f);
 // in canonical rotation, sorted. Faces used by more than two tetrahedra are counted in `nonmanifold`.
 std::vector<Triangle> tet_boundary(const std::vector<Tet>& tets, int* nonmanifold = nullptr);
 
+// The same prism with both triangles reversed: TetMesh's order (the first triangle facing away
+// from the second) to Gmsh's and Medit's (facing it), and back.
+inline Prism flipped_prism(const Prism& p) { return {p[0], p[2], p[1], p[3], p[5], p[4]}; }
+
+// The boundary triangles with one of `tags`, as a surface of their own (`mesh`: its points
+// renumbered in the order the triangles first use them, labels the tags), each point's point in
+// the volume (`volume_point`) and each triangle's tetrahedron (`tet`, an index into `tetrahedra`:
+// the mesh's cells as tetrahedra, all_tetrahedra). Throws InputError when a triangle bounds none.
+struct BoundaryPart {
+  TriMesh mesh;
+  std::vector<int> volume_point;
+  std::vector<int> tet;
+};
+BoundaryPart boundary_part(const TetMesh& mesh, const std::vector<Tet>& tetrahedra, const std::vector<int>& tags);
+
 // Every cell as tetrahedra: the tetrahedra, then each prism's three (split_prism).
 std::vector<Tet> all_tetrahedra(const TetMesh& m);
 

@@ -28,15 +28,15 @@
 
 namespace vesselmesh::post {
 
-struct WallSurface {
-  TriMesh mesh;                   // wall triangles, outward; labels: their tag
-  std::vector<int> volume_point;  // per surface point, its point in the volume mesh
-  std::vector<int> tet;           // per triangle, the tetrahedron (index into `tetrahedra`) it bounds
-};
+// The wall: its triangles (outward; labels their tag), each point's volume point, each triangle's
+// tetrahedron (mesh::boundary_part).
+using WallSurface = mesh::BoundaryPart;
 
 // `tetrahedra`: the mesh's cells as tetrahedra (mesh::all_tetrahedra). Throws InputError when a
 // wall triangle bounds no tetrahedron.
-WallSurface extract_wall(const TetMesh& mesh, const std::vector<Tet>& tetrahedra, const std::vector<int>& tags);
+inline WallSurface extract_wall(const TetMesh& mesh, const std::vector<Tet>& tetrahedra, const std::vector<int>& tags) {
+  return mesh::boundary_part(mesh, tetrahedra, tags);
+}
 
 enum class WssMethod { quadratic, face };
 

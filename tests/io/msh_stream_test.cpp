@@ -1,6 +1,7 @@
 #include "io/msh_stream.h"
 
 #include "io/msh.h"
+#include "io/volume_file.h"
 #include "mesh/error.h"
 #include "synth/shapes.h"
 #include "test_support.h"
@@ -154,7 +155,7 @@ $EndElements
   EXPECT_EQ(m->points[2], Vec3(0, 1, 0));
 }
 
-// Another version or a binary file is Gmsh's to read (read_msh_volume_lean falls back to it).
+// Another version or a binary file is Gmsh's to read (io::read_volume falls back to it).
 TEST(MshStream, OtherVersionsAreLeftToGmsh) {
   test::TemporaryFolder tmp;
   test::write_bytes(tmp.path("v2.msh"), R"($MeshFormat
@@ -173,7 +174,7 @@ $Elements
 $EndElements
 )");
   EXPECT_FALSE(read_msh41_volume(tmp.path("v2.msh")).has_value());
-  const TetMesh m = read_msh_volume_lean(tmp.path("v2.msh"));
+  const TetMesh m = read_volume(tmp.path("v2.msh"));
   EXPECT_EQ(m.num_tets(), 1);
   test::write_bytes(tmp.path("binary.msh"), "$MeshFormat\n4.1 1 8\n");
   EXPECT_FALSE(read_msh41_volume(tmp.path("binary.msh")).has_value());
