@@ -48,6 +48,8 @@ int run(const Options& options, bool first) {
                     {"length_scale_m", s.length_scale},
                     {"solver", s.solver},
                     {"peak_memory_mb", s.peak_memory_mb},
+                    {"library_memory_mb", s.library_memory_mb},
+                    {"peak_own_memory_mb", s.own_memory_mb},
                     {"output", options.output}});
   return 0;
 }

@@ -26,7 +26,10 @@
 // cores on one process, one under MPI; the result is the same whatever N); [output] wss_method = "quadratic" | "face" (how the
 // wall shear stress is taken from the velocity, post/wss.h; default quadratic), checkpoint_every
 // = N (unsteady runs: a checkpoint, flow/checkpoint.h, every N steps, default save_every; 0:
-// only at the last step and when SIGTERM or SIGINT stops the run).
+// only at the last step and when SIGTERM or SIGINT stops the run), fluid_every = N (steps between
+// saved fluid volumes, fluid_*.vtu, a multiple of save_every; default save_every; 0: the last step
+// only — the wall, wall_*.vtp, is saved every save_every steps whatever it is: a fine mesh's
+// volume files are what fills a disk).
 // A positive flow enters the domain, a negative one leaves it.
 #pragma once
 
@@ -97,6 +100,7 @@ struct FlowCase {
   int threads = 0;  // [solver]: the assembly's threads a process; 0: the cores on one process, 1 under MPI
   std::string wss_method = "quadratic";  // post::parse_wss_method
   int checkpoint_every = 10;             // [output]: steps (default save_every); 0: at the end, on a signal
+  int fluid_every = 10;                  // [output]: steps between fluid volumes (default save_every); 0: the last
 };
 
 std::string to_string(BoundaryType type);

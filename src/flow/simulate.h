@@ -49,6 +49,10 @@ struct SimulationSummary {
   std::string solver;
   PartitionReport partition;          // how the points are shared among the processes
   std::vector<double> peak_memory_mb;  // per process: its peak resident memory
+  // per process: its resident pages of mapped files at the end (the shared libraries, shared by the
+  // processes of a node); the peak less it is the process's own memory
+  std::vector<double> library_memory_mb;
+  std::vector<double> own_memory_mb;  // per process: peak_memory_mb less library_memory_mb
   double distribution_memory_mb = 0.0;  // the first process's peak once it had read, split and sent the mesh
   std::string indices_file;  // indices.vtp, or indices.pvtp under MPI
   double steady_residual = -1.0;  // a steady case's relative residual at its answer (StepReport::residual)

@@ -763,6 +763,12 @@ TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
       EXPECT_LT(parts["ghost_points"][r].get<int>(), parts["owned_unknowns"][r].get<int>() / 4);
       EXPECT_GE(parts["neighbours"][r].get<int>(), 1);
       EXPECT_GT(summary["peak_memory_mb"][r].get<double>(), 10.0);
+      // The shared libraries' pages (tens of MB: PETSc, MPI, VTK) within the peak, the rest the
+      // process's own.
+      EXPECT_GT(summary["library_memory_mb"][r].get<double>(), 5.0);
+      EXPECT_NEAR(summary["peak_own_memory_mb"][r].get<double>(),
+                  summary["peak_memory_mb"][r].get<double>() - summary["library_memory_mb"][r].get<double>(), 1e-9);
+      EXPECT_GT(summary["peak_own_memory_mb"][r].get<double>(), 1.0);
     }
     EXPECT_EQ(owned, one["dofs"].get<int>());
     EXPECT_NE(read_text(tmp.path(folder + ".err")).find("points split by PT-Scotch"), std::string::npos);

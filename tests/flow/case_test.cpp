@@ -169,6 +169,11 @@ TEST(FlowCase, CheckpointsEverySaveUnlessToldOtherwise) {
   EXPECT_EQ(parse_case(kContract + std::string("[output]\ncheckpoint_every = 0\n"), "case.toml").checkpoint_every, 0);
   EXPECT_EQ(parse_case(kContract + std::string("[output]\ncheckpoint_every = 50\n"), "case.toml").checkpoint_every, 50);
   expect_error(kContract + std::string("[output]\ncheckpoint_every = -1\n"), "output.checkpoint_every");
+  EXPECT_EQ(parse_case(kContract, "case.toml").fluid_every, 10);  // the case's save_every
+  EXPECT_EQ(parse_case(kContract + std::string("[output]\nfluid_every = 0\n"), "case.toml").fluid_every, 0);
+  EXPECT_EQ(parse_case(kContract + std::string("[output]\nfluid_every = 40\n"), "case.toml").fluid_every, 40);
+  expect_error(kContract + std::string("[output]\nfluid_every = 15\n"), "not a multiple of time.save_every");
+  expect_error(kContract + std::string("[output]\nfluid_every = -2\n"), "output.fluid_every");
 }
 
 TEST(FlowCase, TagsMustMatchTheMesh) {

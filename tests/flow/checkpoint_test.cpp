@@ -236,6 +236,36 @@ double largest_difference(const std::vector<double>& a, const std::vector<double
   return scale > 0.0 ? worst / scale : worst;
 }
 
+// [output] fluid_every: the wall at every save, the fluid volume every fluid_every steps and at the
+// last step (0: the last only); the .pvd files list what was written.
+TEST(Simulate, SavesTheFluidVolumeEveryFluidEverySteps) {
+  const test::TemporaryFolder folder;
+  const auto listed = [](const std::string& pvd) {
+    const std::string text = io::read_file(pvd);
+    size_t n = 0;
+    for (size_t at = text.find("<DataSet"); at != std::string::npos; at = text.find("<DataSet", at + 1)) ++n;
+    return n;
+  };
+  // Saves at steps 4, 8 and 10 (the last); the fluid at 8 and 10.
+  const SimulationSummary a = simulate(read_case(pipe_case(folder, 10, "fluid_every = 8")), folder.path("a"));
+  EXPECT_EQ(a.saved, 3);
+  EXPECT_EQ(listed(folder.path("a/wall.pvd")), 3u);
+  EXPECT_EQ(listed(folder.path("a/fluid.pvd")), 2u);
+  EXPECT_FALSE(std::filesystem::exists(folder.path("a/fluid_000000.vtu")));
+  EXPECT_TRUE(std::filesystem::exists(folder.path("a/fluid_000001.vtu")));
+  EXPECT_TRUE(std::filesystem::exists(folder.path("a/fluid_000002.vtu")));
+  EXPECT_TRUE(std::filesystem::exists(folder.path("a/wall_000000.vtp")));
+  EXPECT_NE(io::read_file(folder.path("a/fluid.pvd")).find("fluid_000002.vtu"), std::string::npos);
+  // 0: the last step's only, the same field as with every save.
+  const SimulationSummary b = simulate(read_case(pipe_case(folder, 10, "fluid_every = 0")), folder.path("b"));
+  EXPECT_EQ(b.saved, 3);
+  EXPECT_EQ(listed(folder.path("b/fluid.pvd")), 1u);
+  EXPECT_FALSE(std::filesystem::exists(folder.path("b/fluid_000001.vtu")));
+  const Results ra = results_in(folder.path("a"), 2), rb = results_in(folder.path("b"), 2);
+  EXPECT_EQ(ra.velocity, rb.velocity);
+  EXPECT_EQ(ra.pressure, rb.pressure);
+}
+
 // Issue 29: a run stopped at step 8 of 12 (a case ending there, at a save) and restarted from its
 // checkpoint with the whole case gives the run that was not stopped: the same saved frames,
 // fields, indices and log, to the linear solver's tolerance.
