@@ -78,6 +78,12 @@ SolveStats LinearSolver::solve_assembled_direct(const std::vector<double>& rhs, 
 
 void LinearSolver::reuse_preconditioner(bool on) { petsc_calls().reuse_preconditioner(*impl_->inside, on); }
 void LinearSolver::rebuild_preconditioner() { petsc_calls().rebuild_preconditioner(*impl_->inside); }
+void LinearSolver::set_low_rank_columns(const std::vector<std::vector<double>>& columns) {
+  petsc_calls().set_low_rank_columns(*impl_->inside, columns);
+}
+void LinearSolver::set_low_rank_coefficients(const std::vector<double>& coefficients) {
+  petsc_calls().set_low_rank_coefficients(*impl_->inside, coefficients);
+}
 std::string LinearSolver::description() const { return petsc_calls().description(*impl_->inside); }
 
 }  // namespace vesselmesh::flow

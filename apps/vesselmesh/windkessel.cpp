@@ -140,10 +140,6 @@ Command add_windkessel_command(CLI::App& parent) {
                                         "distal_resistance {:.4g} Pa s/m3, capacitance {:.4g} m3/Pa",
                                         w.tag, w.radius * 1e3, 100.0 * w.flow_fraction, w.proximal_resistance,
                                         w.distal_resistance, w.capacitance));
-            if (result.size() > 1)
-              reporter.warning("the flow solver couples resistance and rcr ends explicitly (each end's pressure from "
-                               "its outflow of the step before): with several such outlets at resistances this much "
-                               "larger than the vessel's it does not converge yet (issue 32)");
             if (!o->case_file.empty()) {
               io::write_text(o->output, case_with_outlets(o->case_file, o->output, result));
               reporter.info(fmt::format("{}: the case with rcr outlets", o->output));

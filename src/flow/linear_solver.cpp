@@ -220,6 +220,14 @@ struct LinearSolver::Impl {
   double residual_floor = 0.0;  // set_residual_floor's, times ||b||, is the least absolute tolerance
   double tolerance_factor = 1.0;  // scale_tolerance's
   double user_rtol = -1.0, user_abstol = -1.0;  // the options' tolerances (-1: not read yet)
+  // The low-rank term (set_low_rank_columns): its columns in PETSc's layout, their coefficients,
+  // and the whole operator A + U C U^T as a shell matrix (null without columns).
+  std::vector<Vec> low_rank;
+  std::vector<PetscScalar> low_rank_c;
+  Mat whole = nullptr;
+  // The operator the Krylov methods and the residual apply: the shell, or the matrix.
+  Mat op() const { return whole ? whole : matrix; }
+  static PetscErrorCode low_rank_product(Mat shell, Vec x, Vec y);
 
   // A process's row of unknowns (point a's component i, interleaved) in PETSc's vectors.
   int petsc_row(int row) const {
@@ -242,6 +250,8 @@ struct LinearSolver::Impl {
     if (rhs) VecDestroy(&rhs);
     if (solution) VecDestroy(&solution);
     if (converted) MatDestroy(&converted);
+    if (whole) MatDestroy(&whole);
+    for (Vec& v : low_rank) VecDestroy(&v);
     if (schur) MatDestroy(&schur);
     if (matrix) MatDestroy(&matrix);
     for (auto& row : blocks)
@@ -340,6 +350,19 @@ void restore_values(Mat part, double** values) {
 }
 
 }  // namespace
+
+// y = A x + sum_k c_k u_k (u_k^T x): the low-rank term's operator (set_low_rank_columns).
+PetscErrorCode LinearSolver::Impl::low_rank_product(Mat shell, Vec x, Vec y) {
+  Impl* s = nullptr;
+  PetscCall(MatShellGetContext(shell, &s));
+  PetscCall(MatMult(s->matrix, x, y));
+  const PetscInt k = static_cast<PetscInt>(s->low_rank.size());
+  std::vector<PetscScalar> dots(static_cast<size_t>(k));
+  PetscCall(VecMDot(x, k, s->low_rank.data(), dots.data()));
+  for (PetscInt j = 0; j < k; ++j) dots[j] *= s->low_rank_c[j];
+  PetscCall(VecMAXPY(y, k, dots.data(), s->low_rank.data()));
+  return 0;
+}
 
 void LinearSolver::Impl::make_matrix(MPI_Comm comm) {
   const int bs = block_size, c = bs - 1;
@@ -631,13 +654,22 @@ SolveStats LinearSolver::solve_assembled_direct(const std::vector<double>& rhs, 
           "MatConvert (the field blocks into one matrix)");
     a = s.converted;
   }
-  check(KSPSetOperators(s.direct, a, a), "KSPSetOperators");
+  // With a low-rank term, A's LU preconditions GMRES on the whole operator (K + 1 iterations for
+  // K columns, in exact arithmetic).
+  if (s.whole) {
+    check(KSPSetType(s.direct, KSPGMRES), "KSPSetType");
+    check(KSPSetTolerances(s.direct, 1e-12, 0.0, PETSC_DEFAULT, 100), "KSPSetTolerances");
+    check(KSPSetInitialGuessNonzero(s.direct, PETSC_TRUE), "KSPSetInitialGuessNonzero");
+  }
+  check(KSPSetOperators(s.direct, s.whole ? s.whole : a, a), "KSPSetOperators");
   check(KSPSolve(s.direct, s.rhs, s.solution), "KSPSolve (MUMPS)");
   KSPConvergedReason reason = KSP_DIVERGED_PC_FAILED;
   check(KSPGetConvergedReason(s.direct, &reason), "KSPGetConvergedReason");
   s.copy_out(x);
   SolveStats stats;
-  stats.iterations = 1;
+  PetscInt direct_iterations = 1;
+  if (s.whole) check(KSPGetIterationNumber(s.direct, &direct_iterations), "KSPGetIterationNumber");
+  stats.iterations = static_cast<int>(std::max<PetscInt>(direct_iterations, 1));
   stats.converged = reason > 0;
   stats.reason = KSPConvergedReasons[reason];
   s.built_iterations = -1;  // the iterative solver's preconditioner is built anew next time
@@ -649,7 +681,7 @@ double LinearSolver::relative_residual(const std::vector<double>& rhs, const std
   s.load(rhs, x, "relative_residual");
   Vec r = nullptr;
   check(VecDuplicate(s.rhs, &r), "VecDuplicate");
-  check(MatMult(s.matrix, s.solution, r), "MatMult");
+  check(MatMult(s.op(), s.solution, r), "MatMult");
   check(VecAXPY(r, -1.0, s.rhs), "VecAXPY");
   PetscReal residual = 0.0, scale = 0.0;
   check(VecNorm(r, NORM_2, &residual), "VecNorm");
@@ -717,6 +749,39 @@ SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::ve
   if (built) s.built_iterations = static_cast<int>(iterations);
   s.last_iterations = static_cast<int>(iterations);
   return stats;
+}
+
+void LinearSolver::set_low_rank_columns(const std::vector<std::vector<double>>& columns) {
+  Impl& s = *impl_;
+  VM_CHECK(s.low_rank.empty(), "the low-rank columns are set once");
+  if (columns.empty()) return;
+  for (const std::vector<double>& column : columns) {
+    VM_CHECK(static_cast<int>(column.size()) == s.rows, "a low-rank column of this process's rows");
+    Vec v = nullptr;
+    check(VecDuplicate(s.solution, &v), "VecDuplicate");
+    PetscScalar* a = nullptr;
+    check(VecGetArray(v, &a), "VecGetArray");
+    for (int row = 0; row < s.rows; ++row) a[s.petsc_row(row)] = column[row];
+    check(VecRestoreArray(v, &a), "VecRestoreArray");
+    s.low_rank.push_back(v);
+  }
+  s.low_rank_c.assign(columns.size(), 0.0);
+  const PetscInt global = s.block_size * s.pattern.total_rows();
+  check(MatCreateShell(s.distributed ? PETSC_COMM_WORLD : PETSC_COMM_SELF, s.rows, s.rows, global, global, &s,
+                       &s.whole),
+        "MatCreateShell");
+  check(MatShellSetOperation(s.whole, MATOP_MULT, reinterpret_cast<void (*)(void)>(Impl::low_rank_product)),
+        "MatShellSetOperation");
+  // The Krylov method on the whole operator, the preconditioner built from the matrix alone.
+  check(KSPSetOperators(s.ksp, s.whole, s.matrix), "KSPSetOperators");
+}
+
+void LinearSolver::set_low_rank_coefficients(const std::vector<double>& coefficients) {
+  Impl& s = *impl_;
+  VM_CHECK(coefficients.size() == s.low_rank.size(), "a coefficient per low-rank column");
+  // (The shell reads them at each product; the preconditioner is the matrix's, whose assembly
+  // tells PETSc it changed.)
+  std::copy(coefficients.begin(), coefficients.end(), s.low_rank_c.begin());
 }
 
 void LinearSolver::reuse_preconditioner(bool on) { impl_->reuse = on; }

@@ -234,6 +234,17 @@ class LinearSolver {
   // The next iterative solves' relative tolerance is the options' times `factor` (1: as given).
   void scale_tolerance(double factor);
 
+  // A low-rank term: the operator becomes A + sum_k c_k u_k u_k^T (resistive ends coupled
+  // implicitly: u_k an end's area vectors at its points, c_k its resistance over the density, so
+  // that the end's pressure is c_k times its flux u_k^T x in the same solve). The columns u_k (this
+  // process's rows, interleaved as the right-hand side) are set once, their coefficients before
+  // each solve (0 leaves a column out). The preconditioner stays A's (PETSc's Krylov method applies
+  // the whole operator, a matrix-free product: a rank-K term costs it about K more iterations,
+  // however large c_k); solve_assembled_direct's LU of A is iterated on the whole operator too
+  // (GMRES, K + 1 iterations), and relative_residual measures it.
+  void set_low_rank_columns(const std::vector<std::vector<double>>& columns);
+  void set_low_rank_coefficients(const std::vector<double>& coefficients);
+
   // Keep the preconditioner from one solve to the next while it still serves (a time step's
   // matrix changes little from the step before, and building ILU or AMG costs more than the few
   // extra iterations): it is built anew when the solve before took more than

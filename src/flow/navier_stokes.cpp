@@ -126,8 +126,15 @@ struct NavierStokes::Impl {
   std::vector<double> rhs, x, dirichlet;
   void make_solver();
   bool stokes_start = false;  // the solver to make is the Stokes start's
-  std::vector<double> resistance_pressure;  // per boundary: Pa / rho, from the last step's outflow
+  // The resistance and rcr ends, coupled implicitly: an end's pressure over rho is
+  // resistance_coefficient x its outflow Q in the same solve (the solver's low-rank term, its
+  // column the end's area vectors at its points) plus resistance_pressure; an rcr end's capacitor
+  // then moves to capacitor_gain x Q + capacitor_base (update_resistance, settle_capacitors).
+  std::vector<double> resistance_pressure;     // per boundary: Pa / rho, the part independent of Q
+  std::vector<double> resistance_coefficient;  // per boundary: (Pa s/m3) / rho
+  std::vector<double> capacitor_gain, capacitor_base;  // per rcr boundary: Pa s/m3, Pa
   std::vector<double> capacitor_pressure;   // per boundary: rcr ends' capacitor pressure P_c (Pa)
+  std::vector<int> resistive;               // the resistance and rcr boundaries: the low-rank columns
 
   int n() const { return static_cast<int>(points.size()); }
 
@@ -175,9 +182,11 @@ struct NavierStokes::Impl {
   double line_search(double before, StepReport& report, double& after);
   // Every boundary's flux (m3/s) of `velocity`, summed over the processes (every process calls it).
   std::vector<double> fluxes(const std::vector<Vec3>& velocity) const;
-  // The resistance and rcr boundaries' pressure (over rho) from the current outflow; an rcr end's
-  // capacitor moves on by `dt` first (0: stays; steady cases: its steady value).
+  // The resistance and rcr boundaries' pressure (over rho) as a function of their outflow in the
+  // next solve, a step of `dt` (0: an rcr end's capacitor stays; steady cases: its steady value).
   void update_resistance(double dt);
+  // The rcr ends' capacitors at the solved flow (after update_resistance's solve).
+  void settle_capacitors();
   // Copies the solved x into velocity and pressure; returns the velocity's relative change.
   double take_solution(std::vector<Vec3>& velocity, std::vector<double>& pressure) const;
   void check_finite(const StepReport& report) const;
@@ -403,10 +412,14 @@ void NavierStokes::Impl::build_boundaries(const MeshPart& part) {
       if (local_global[a] == 0) fixed[kBlock * a + 3] = 1;
   }
   resistance_pressure.assign(boundaries.size(), 0.0);
+  resistance_coefficient.assign(boundaries.size(), 0.0);
+  capacitor_gain.assign(boundaries.size(), 0.0);
+  capacitor_base.assign(boundaries.size(), 0.0);
   capacitor_pressure.assign(boundaries.size(), 0.0);
   for (size_t k = 0; k < boundaries.size(); ++k) {
     const BoundaryCondition& c = boundaries[k].condition;
     if (c.type == BoundaryType::rcr) capacitor_pressure[k] = c.initial_pressure.value_or(c.distal_pressure);
+    if (c.type == BoundaryType::rcr || c.type == BoundaryType::resistance) resistive.push_back(static_cast<int>(k));
   }
 }
 
@@ -444,23 +457,46 @@ std::vector<double> NavierStokes::Impl::fluxes(const std::vector<Vec3>& velocity
   return sum_all(std::move(q));
 }
 
-// The rcr end: the 3D flow's outflow Q of the last solve (explicit, as a resistance end's), the
-// capacitor by backward Euler, C (P_c' - P_c) / dt = Q - (P_c' - P_d) / R_d: unconditionally
-// stable however small R_d C is against dt (a stiff circuit relaxes to its steady P_d + R_d Q,
-// it does not oscillate), and exact at steady state.
+// Implicit coupling: the end's pressure P = R Q (resistance) or P = R_p Q + P_c' (rcr) with the
+// outflow Q of the flow being solved, the capacitor by backward Euler, C (P_c' - P_c) / dt = Q -
+// (P_c' - P_d) / R_d, so P_c' = g Q + b with g = (dt / C) / (1 + dt / (R_d C)) and b = (P_c + dt
+// P_d / (R_d C)) / (1 + dt / (R_d C)): unconditionally stable however small R_d C is against dt (a
+// stiff circuit relaxes to its steady P_d + R_d Q, it does not oscillate), exact at steady state
+// (g = R_d, b = P_d). Coupled explicitly (P from the last step's Q) several ends of resistances
+// far above the vessel's diverged (issue 32's note: 1.00 -> 2.92 in six steady iterations on a Y
+// at Murray's resistances); implicitly each solve gives the ends' flows and pressures together.
 void NavierStokes::Impl::update_resistance(double dt) {
-  const std::vector<double> q = fluxes(u);
   for (size_t k = 0; k < boundaries.size(); ++k) {
     const BoundaryCondition& c = boundaries[k].condition;
-    if (c.type == BoundaryType::resistance) resistance_pressure[k] = c.resistance * q[k] / fc.density;
+    if (c.type == BoundaryType::resistance) {
+      resistance_coefficient[k] = c.resistance / fc.density;
+      resistance_pressure[k] = 0.0;
+    }
     if (c.type != BoundaryType::rcr) continue;
-    double& pc = capacitor_pressure[k];
-    if (fc.steady) pc = c.distal_pressure + c.distal_resistance * q[k];
-    else if (dt > 0.0)
-      pc = (pc + dt / c.capacitance * (q[k] + c.distal_pressure / c.distal_resistance)) /
-           (1.0 + dt / (c.distal_resistance * c.capacitance));
-    resistance_pressure[k] = (c.proximal_resistance * q[k] + pc) / fc.density;
+    double gain = 0.0, base = capacitor_pressure[k];
+    if (fc.steady) {
+      gain = c.distal_resistance;
+      base = c.distal_pressure;
+    } else if (dt > 0.0) {
+      const double relax = 1.0 + dt / (c.distal_resistance * c.capacitance);
+      gain = dt / c.capacitance / relax;
+      base = (capacitor_pressure[k] + dt * c.distal_pressure / (c.distal_resistance * c.capacitance)) / relax;
+    }
+    capacitor_gain[k] = gain;
+    capacitor_base[k] = base;
+    resistance_coefficient[k] = (c.proximal_resistance + gain) / fc.density;
+    resistance_pressure[k] = base / fc.density;
   }
+}
+
+void NavierStokes::Impl::settle_capacitors() {
+  bool any = false;
+  for (const Boundary& b : boundaries) any |= b.condition.type == BoundaryType::rcr;
+  if (!any) return;
+  const std::vector<double> q = fluxes(u);
+  for (size_t k = 0; k < boundaries.size(); ++k)
+    if (boundaries[k].condition.type == BoundaryType::rcr)
+      capacitor_pressure[k] = capacitor_gain[k] * q[k] + capacitor_base[k];
 }
 
 double NavierStokes::Impl::take_solution(std::vector<Vec3>& velocity, std::vector<double>& pressure) const {
@@ -769,6 +805,11 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
     }
   solver->end_assembly();
   values = MatrixValues{};
+  if (!resistive.empty()) {  // the resistive ends' implicit part, as update_resistance left it
+    std::vector<double> coefficients;
+    for (int k : resistive) coefficients.push_back(resistance_coefficient[k]);
+    solver->set_low_rank_coefficients(coefficients);
+  }
 }
 
 void NavierStokes::Impl::make_solver() {
@@ -777,6 +818,22 @@ void NavierStokes::Impl::make_solver() {
       fc.steady ? saddle_point_options() : stokes_start ? stokes_start_options() : time_step_options();
   solver = std::make_unique<LinearSolver>(point_pattern(), kBlock, defaults, fc.petsc_options);
   solver->reuse_preconditioner(!fc.steady && fc.reuse_preconditioner);
+  // The resistive ends' columns: per end, at each of its points this process owns, the area
+  // vector of its triangles there (a third of each's area times its outward normal) in the free
+  // velocity rows, so that a column times the flow is the end's outflow (fluxes()).
+  if (!resistive.empty()) {
+    std::vector<std::vector<double>> columns;
+    for (int k : resistive) {
+      std::vector<double> column(kBlock * owned, 0.0);
+      for (const BoundaryFace& f : boundaries[k].faces)
+        for (int a = 0; a < 3; ++a)
+          if (owns(f.v[a]))
+            for (int i = 0; i < 3; ++i)
+              if (!fixed[kBlock * f.v[a] + i]) column[kBlock * f.v[a] + i] += f.area / 3.0 * f.normal[i];
+      columns.push_back(std::move(column));
+    }
+    solver->set_low_rank_columns(columns);
+  }
   // A steady iteration's solve cuts the residual it starts from 1000-fold (saddle_point_options),
   // and does nothing once that residual is a hundredth of the change tolerance (of ||b||): the
   // last iterations cost nothing more, as they did when the tolerance was relative to ||b||.
@@ -874,6 +931,7 @@ StepReport NavierStokes::step() {
   s.u_old = std::move(s.u);
   s.u = std::move(next);
   s.p = std::move(next_p);
+  s.settle_capacitors();
   s.t = t_next;
   s.step_count += 1;
   s.published = false;
@@ -1027,17 +1085,9 @@ StepReport NavierStokes::solve_steady() {
     last_rate = used_dt > 0.0 ? report.change / used_dt : 0.0;
   }
   if (!settled) {
-    int resistive = 0;
-    for (const Boundary& b : s.boundaries)
-      resistive += b.condition.type == BoundaryType::resistance || b.condition.type == BoundaryType::rcr;
-    const std::string advice =
-        resistive > 1 ? fmt::format("the {} resistance/rcr ends are coupled explicitly (each end's pressure from its "
-                                    "last outflow), which does not converge when their resistances are much larger "
-                                    "than the vessel's: give all but one of them a traction condition for now",
-                                    resistive)
-        : s.fc.pseudo_transient ? "run it in time, or raise time.steady_iterations"
-                                : "try time.steady_method = \"pseudo-transient\", run it in time, or raise "
-                                  "time.steady_iterations";
+    const std::string advice = s.fc.pseudo_transient ? "run it in time, or raise time.steady_iterations"
+                                                     : "try time.steady_method = \"pseudo-transient\", run it in "
+                                                       "time, or raise time.steady_iterations";
     throw ComputationError(fmt::format("the steady solve did not settle in {} iterations (last relative change "
                                        "{:.3g} > {:.3g}): the flow may be unsteady at this Reynolds number; {}",
                                        s.fc.steady_iterations, report.change, s.fc.steady_tolerance, advice));
@@ -1048,6 +1098,7 @@ StepReport NavierStokes::solve_steady() {
   s.assemble(s.u, none, 0.0, 0.0);
   report.assembly_seconds += seconds_since(assembly);
   report.residual = s.solver->relative_residual(s.rhs, s.x);
+  s.settle_capacitors();  // P_d + R_d Q at the answer
   s.reporter->info(fmt::format("steady residual {:.3e} (relative: ||A(u) u - b|| / ||b||) after {} iterations",
                                report.residual, report.step));
   report.seconds = seconds_since(start);

@@ -37,6 +37,12 @@ extern "C" __attribute__((visibility("default"))) const vesselmesh::flow::PetscC
       [](LinearSolver& solver, bool on) { solver.reuse_preconditioner(on); },
       [](LinearSolver& solver) { solver.rebuild_preconditioner(); },
       [](const LinearSolver& solver) { return solver.description(); },
+      [](LinearSolver& solver, const std::vector<std::vector<double>>& columns) {
+        solver.set_low_rank_columns(columns);
+      },
+      [](LinearSolver& solver, const std::vector<double>& coefficients) {
+        solver.set_low_rank_coefficients(coefficients);
+      },
   };
   return &calls;
 }

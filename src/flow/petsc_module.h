@@ -13,7 +13,7 @@ inline constexpr const char* kPetscModuleFile = "libvesselmesh-petsc.so";
 
 // The module's entry points: a LinearSolver made, used and destroyed inside the module; `layout`
 // first, as in io/gmsh_module.h (raise it when this table or a type it passes changes).
-inline constexpr int kPetscCallsLayout = 12;
+inline constexpr int kPetscCallsLayout = 13;
 struct PetscCalls {
   int layout;
   int (*process_count)();
@@ -42,6 +42,8 @@ struct PetscCalls {
   void (*reuse_preconditioner)(LinearSolver& solver, bool on);
   void (*rebuild_preconditioner)(LinearSolver& solver);
   std::string (*description)(const LinearSolver& solver);
+  void (*set_low_rank_columns)(LinearSolver& solver, const std::vector<std::vector<double>>& columns);
+  void (*set_low_rank_coefficients)(LinearSolver& solver, const std::vector<double>& coefficients);
 };
 
 }  // namespace vesselmesh::flow
