@@ -8,6 +8,7 @@
 #include "io/msh.h"
 #include "io/vtk_formats.h"
 #include "mesh/error.h"
+#include "remesh/extend.h"
 #include "study/study.h"
 #include "volume/quality.h"
 #include "volume/volume_mesh.h"
@@ -16,6 +17,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include <unistd.h>
 
@@ -58,12 +60,18 @@ Command add_demo_command(CLI::App& parent) {
               "into a folder");
   struct Options {
     std::string output, input, units;
+    double extensions = 0.0;
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
   app->add_option("-o,--output", o->output, "Folder for the results (created if needed)")->required();
   app->add_option("--input", o->input, "Run on this surface instead of the bundled example");
   app->add_option("--units", o->units, "Length unit of --input: um, mm, cm or m (default mm)");
+  app->add_option("--extensions", o->extensions,
+                  "Flow extensions of this many radii on every open end (as 'vesselmesh extend'; 0: none), for every "
+                  "stage after the first and the study ([extensions] length)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   add_common_options(*app, o->common);
   return {app, [o] {
             TerminalReporter reporter(o->common.quiet);
@@ -83,22 +91,29 @@ Command add_demo_command(CLI::App& parent) {
             io::write_text((folder / "surface_info.json").string(), info.dump(2) + "\n");
             io::write_text((folder / "surface_info.txt").string(), describe_as_text(surface));
             write_repaired((folder / "surface.vtp").string(), surface);
+            std::optional<remesh::ExtensionResult> extended;
+            if (o->extensions > 0.0) {
+              reporter.info(fmt::format("stage 1: flow extensions of {:g} radii on every open end", o->extensions));
+              extended = remesh::extend_ends(surface.file.mesh, surface.ends, {.length = o->extensions});
+              io::write_vtp((folder / "surface_extended.vtp").string(), extended->mesh);
+            }
+            const TriMesh& vessel = extended ? extended->mesh : surface.file.mesh;  // what the stages below mesh
 
             // Stage 2: curvature (drives the curvature-adapted meshes).
             reporter.info("stage 2: curvature");
-            const analysis::CurvatureField curvature = analysis::curvature(surface.file.mesh, {}, reporter);
-            io::write_vtp((folder / "curvature.vtp").string(), surface.file.mesh, curvature_fields(curvature));
+            const analysis::CurvatureField curvature = analysis::curvature(vessel, {}, reporter);
+            io::write_vtp((folder / "curvature.vtp").string(), vessel, curvature_fields(curvature));
 
             // Stage 3: centerlines and the distance map (drive the distance-adapted meshes and the
             // boundary layer's thickness).
             reporter.info("stage 3: centerlines and distance map");
-            const centerline::Centerlines lines = centerline::extract(surface.file.mesh, {}, reporter);
+            const centerline::Centerlines lines = centerline::extract(vessel, {}, reporter);
             write_centerlines((folder / "centerlines.vtp").string(), lines);
-            write_distance_map((folder / "distance_map.vtp").string(), surface.file.mesh, lines);
+            write_distance_map((folder / "distance_map.vtp").string(), vessel, lines);
 
             // Stage 4: the paper's four surface meshes, one size field each, with the same
             // number of triangles.
-            const centerline::DistanceMap distance = centerline::distance_map(surface.file.mesh, lines);
+            const centerline::DistanceMap distance = centerline::distance_map(vessel, lines);
             Json meshes = Json::object();
             std::vector<std::pair<std::string, std::string>> remeshed;
             TriMesh curvature_adapted;  // the wall of stage 5
@@ -107,12 +122,12 @@ Command add_demo_command(CLI::App& parent) {
               const std::string name = sizing::size_kind_name(kind);
               reporter.info(fmt::format("stage 4: {} surface mesh of about {} triangles", name, kDemoTriangles));
               const sizing::SizeField field =
-                  sizing::make_size_field(surface.file.mesh, {.kind = kind, .target_triangles = kDemoTriangles},
+                  sizing::make_size_field(vessel, {.kind = kind, .target_triangles = kDemoTriangles},
                                           {.curvature = &curvature, .distance = &distance}, reporter);
               remesh::RemeshOptions options;
               options.input_radius = &distance.radius;
               const remesh::RemeshResult result =
-                  remesh::adapt_to_count(surface.file.mesh, field.metric, kDemoTriangles, options, reporter);
+                  remesh::adapt_to_count(vessel, field.metric, kDemoTriangles, options, reporter);
               write_remeshed((folder / ("surface_" + name + ".vtp")).string(), result);
               if (kind == sizing::SizeKind::curvature) curvature_adapted = result.mesh;
               meshes[name] = remesh_json(result.stats);
@@ -167,6 +182,7 @@ Command add_demo_command(CLI::App& parent) {
                 "surface = \"surface.vtp\"\ncase = \"flow.toml\"\ntriangles = {1}\n"
                 "[reference]\nlevels = 1\nfactor = 2.0\n",
                 o->output, kStudyTriangles);
+            if (o->extensions > 0.0) study_text += fmt::format("[extensions]\nlength = {:g}\n", o->extensions);
             for (const centerline::Branch& b : lines.branches) {
               const Vec3& p = b.points[b.points.size() / 2];
               study_text += fmt::format("[[ring]]\nname = \"branch_{}\"\npoint = [{:.6g}, {:.6g}, {:.6g}]\n", b.id,
@@ -177,6 +193,10 @@ Command add_demo_command(CLI::App& parent) {
                 study::run_study(study::read_study((folder / "study.toml").string()), (folder / "study").string(),
                                  reporter);
             remeshed.emplace_back("study.toml", "the reduced study: 4 meshes of 4000 triangles, 1 reference level");
+            if (extended)
+              remeshed.insert(remeshed.begin(), {"surface_extended.vtp",
+                                                 fmt::format("the surface with flow extensions of {:g} radii (mm)",
+                                                             o->extensions)});
             remeshed.emplace_back("study/report.html", "the study's report (also report.md, figures/, study.json)");
 
             std::vector<std::pair<std::string, std::string>> outputs = {

@@ -193,4 +193,11 @@ TriMesh fan_capped(const TriMesh& mesh, const std::vector<OpenEnd>& ends) {
   return closed;
 }
 
+std::vector<std::string> default_end_names(int ends, int inlet) {
+  std::vector<std::string> names;
+  int outlet = 0;
+  for (int e = 0; e < ends; ++e) names.push_back(e == inlet ? "inlet" : "outlet_" + std::to_string(++outlet));
+  return names;
+}
+
 }  // namespace vesselmesh::analysis

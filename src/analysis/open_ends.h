@@ -11,6 +11,7 @@
 
 #include "mesh/trimesh.h"
 
+#include <string>
 #include <vector>
 
 namespace vesselmesh::analysis {
@@ -40,6 +41,10 @@ struct OpenEndsOptions {
 };
 
 std::vector<OpenEnd> open_ends(const TriMesh& mesh, const OpenEndsOptions& options = {});
+
+// The ends' names as `vesselmesh volume` gives them by default: "inlet" for end `inlet` (the
+// largest, 0, unless said), "outlet_1", "outlet_2", ... for the others in their order.
+std::vector<std::string> default_end_names(int ends, int inlet = 0);
 
 // The surface with each open (not capped) end closed by a fan of triangles from its centre,
 // oriented like the wall: a closed surface for inside tests, not a mesh to simulate on.

@@ -17,6 +17,7 @@
 #include "mesh/error.h"
 #include "post/wall_series.h"
 #include "remesh/adapt.h"
+#include "remesh/extend.h"
 #include "study/study_report.h"
 #include "volume/fill.h"
 #include "volume/quality.h"
@@ -106,7 +107,7 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
   StudyConfig c;
   c.path = path;
   r.known_keys(root, "", {"surface", "units", "case", "triangles", "meshes", "reference", "volume", "post", "ring", "end",
-                          "point", "ranks"});
+                          "point", "ranks", "extensions"});
   const std::string surface = r.text(root["surface"], "surface", "");
   if (surface.empty()) r.fail("surface", "missing: the vessel surface (STL, VTP, ...) to study");
   c.surface = io::resolve_path(path, surface);
@@ -165,6 +166,18 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
     c.equal_volume_nodes = r.flag(v["equal_volume_nodes"], "volume.equal_volume_nodes", c.equal_volume_nodes);
     c.inlet = r.integer(v["inlet"], "volume.inlet", -1, 0);
     c.end_names = r.strings(v["end_names"], "volume.end_names");
+  }
+  if (const toml::table* t = root["extensions"].as_table()) {
+    r.known_keys(*t, "extensions", {"length", "mode"});
+    const io::TomlView v = root["extensions"];
+    c.extension_length = r.number(v["length"], "extensions.length", 0.0);
+    if (!(c.extension_length >= 0.0)) r.fail("extensions.length", "give the tubes' length in radii of each end (0: none)");
+    c.extension_mode = r.text(v["mode"], "extensions.mode", c.extension_mode);
+    try {
+      remesh::parse_extension_mode(c.extension_mode);
+    } catch (const InputError& e) {
+      r.fail("extensions.mode", e.what());
+    }
   }
   if (const toml::table* t = root["post"].as_table()) {
     r.known_keys(*t, "post", {"time"});
@@ -230,9 +243,27 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
   if (!config.units.empty()) read.units = io::parse_unit(config.units);
   io::SurfaceFile file = io::read_surface(config.surface, read, reporter);
   mesh::clean(file.mesh, {}, reporter);
-  const TriMesh& surface = file.mesh;
   const flow::FlowCase base_case = flow::read_case(config.flow_case);  // checked before any long step
-  if (!config.end_at.empty()) volume::names_of_ends(analysis::open_ends(surface), config.end_at);  // and the ends' names
+  std::vector<volume::EndAt> end_at = config.end_at;
+  if (!end_at.empty()) volume::names_of_ends(analysis::open_ends(file.mesh), end_at);  // and the ends' names
+  if (config.extension_length > 0.0) {
+    // Flow extensions on every open end; the [[end]] points follow their ends.
+    const std::vector<analysis::OpenEnd> ends = analysis::open_ends(file.mesh);
+    remesh::ExtensionResult extended =
+        remesh::extend_ends(file.mesh, ends,
+                            {.length = config.extension_length, .mode = remesh::parse_extension_mode(config.extension_mode)});
+    for (volume::EndAt& e : end_at) {
+      const remesh::ExtendedEnd* nearest = nullptr;
+      for (const remesh::ExtendedEnd& x : extended.extended)
+        if (!nearest || (x.old_center - e.point).norm() < (nearest->old_center - e.point).norm()) nearest = &x;
+      if (nearest) e.point = nearest->center;
+    }
+    for (const remesh::ExtendedEnd& x : extended.extended)
+      reporter.info(fmt::format("study: end {} extended by {:.4g} (radius {:.4g}): its centre now ({:.4g}, {:.4g}, {:.4g})",
+                                x.end, x.length, x.radius, x.center.x(), x.center.y(), x.center.z()));
+    file.mesh = std::move(extended.mesh);
+  }
+  const TriMesh& surface = file.mesh;
   reporter.info("study: curvature, centerlines and distance map of the input");
   const analysis::CurvatureField curvature = analysis::curvature(surface, {}, reporter);
   const centerline::Centerlines lines = centerline::extract(surface, {}, reporter);
@@ -251,7 +282,9 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       config.thickness_ratio, config.layer_angle, config.layer_split_angle, config.algorithm, config.inlet,
       config.interior.factor, config.interior.gradation, config.interior.core_fraction, config.equal_volume_nodes);
   for (const std::string& n : config.end_names) common += n + ",";
-  for (const volume::EndAt& e : config.end_at)
+  if (config.extension_length > 0.0)
+    common += fmt::format("\nextensions {} {}", config.extension_length, config.extension_mode);
+  for (const volume::EndAt& e : end_at)
     common += fmt::format("\nend {} {} {} {}", e.name, e.point.x(), e.point.y(), e.point.z());
   std::string case_text = io::read_file(config.flow_case);
   for (const flow::BoundaryCondition& b : base_case.boundaries)
@@ -325,7 +358,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       vo.interior = config.interior;
       vo.inlet = config.inlet;
       vo.end_names = config.end_names;
-      vo.end_at = config.end_at;
+      vo.end_at = end_at;
       if (volume_points > 0)
         reporter.info(fmt::format("study: {}: its volume sized to {} nodes, as the first compared mesh's", name,
                                   volume_points));

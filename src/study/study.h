@@ -71,6 +71,11 @@ struct StudyConfig {
   int inlet = -1;
   std::vector<std::string> end_names;
   std::vector<volume::EndAt> end_at;
+  // [extensions] length = L (radii; 0: none), mode = "smooth" | "straight": flow extensions added to
+  // every open end of the input before anything else (remesh/extend.h); an [[end]] point names the
+  // end it was nearest before, now moved.
+  double extension_length = 0.0;
+  std::string extension_mode = "smooth";
   std::optional<double> time;
   std::vector<post::RingRequest> rings;
   std::vector<post::PointSpec> points;

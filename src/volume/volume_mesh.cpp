@@ -105,7 +105,8 @@ void assign_tags(const std::vector<analysis::OpenEnd>& ends, VolumeOptions optio
   };
   report.wall_tag = fresh();
   const int inlet = options.inlet >= 0 ? options.inlet : 0;  // ends come largest first
-  int outlet = 0;
+  const std::vector<std::string> names =
+      !options.end_names.empty() ? options.end_names : analysis::default_end_names(count, inlet);
   for (int e = 0; e < count; ++e) {
     VolumeEnd v;
     v.center = ends[e].center;
@@ -113,7 +114,7 @@ void assign_tags(const std::vector<analysis::OpenEnd>& ends, VolumeOptions optio
     v.radius = ends[e].radius;
     v.capped = ends[e].capped;
     v.tag = ends[e].capped && ends[e].label > 0 ? ends[e].label : fresh();
-    v.name = !options.end_names.empty() ? options.end_names[e] : e == inlet ? "inlet" : fmt::format("outlet_{}", ++outlet);
+    v.name = names[e];
     report.ends.push_back(v);
   }
 }

@@ -892,6 +892,55 @@ TEST(Cli, WindkesselOutletsFollowMurraysLaw) {
   EXPECT_NE(last_line(bad.err).find("systolic first"), std::string::npos) << bad.err;
 }
 
+// `extend` (issue 32): two of a Y's three ends by name and index, five radii each along their
+// normals; `info` finds three ends, the two moved; the moved centres name the ends for `volume`;
+// an unknown end or mode is a one-line error, exit 2.
+TEST(Cli, ExtendMovesTheChosenEnds) {
+  test::TemporaryFolder tmp;
+  ASSERT_EQ(run({"synth", "bifurcation", "--daughter-radii", "2.4", "1.8", "--parent-length", "12",
+                 "--daughter-length", "12", "--resolution", "0.5", "-o", tmp.path("y.stl"), "-q"})
+                .code,
+            0);
+  const RunResult before = run({"info", tmp.path("y.stl"), "--json"});
+  ASSERT_EQ(before.code, 0) << before.err;
+  const RunResult x = run({"extend", tmp.path("y.stl"), "-o", tmp.path("y_ext.vtp"), "--ends", "outlet_1,2",
+                           "--length", "5", "--json"});
+  ASSERT_EQ(x.code, 0) << x.err;
+  const Json moved = x.json()["extended"];
+  ASSERT_EQ(moved.size(), 2u);
+  const Json ends = before.json()["open_ends"];  // a copy (json() is a temporary)
+  const RunResult after = run({"info", tmp.path("y_ext.vtp"), "--json"});
+  ASSERT_EQ(after.code, 0) << after.err;
+  const Json now_ends = after.json()["open_ends"];
+  ASSERT_EQ(after.json()["open_ends"].size(), 3u);
+  for (const auto& [kind, count] : after.json()["repairs"].items()) EXPECT_EQ(count.get<int>(), 0) << kind;
+  std::vector<std::string> names;
+  for (const Json& m : moved) {
+    const int e = m["end"];
+    names.push_back(m["name"]);
+    const Vec3 old_center(ends[e]["center"][0], ends[e]["center"][1], ends[e]["center"][2]);
+    const Vec3 center(m["center"][0], m["center"][1], m["center"][2]);
+    const double radius = ends[e]["radius"];
+    EXPECT_NEAR((center - old_center).norm(), 5.0 * radius, 0.02 * 5.0 * radius);
+    double nearest = 1e300;  // an end of the extended surface is there, of the same radius
+    double nearest_radius = 0.0;
+    for (const Json& now : now_ends) {
+      const double d = (Vec3(now["center"][0], now["center"][1], now["center"][2]) - center).norm();
+      if (d < nearest) nearest = d, nearest_radius = now["radius"];
+    }
+    EXPECT_LT(nearest, 1e-3 * radius);
+    EXPECT_NEAR(nearest_radius, radius, 0.01 * radius);
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"outlet_1", "outlet_2"}));
+  const RunResult unknown = run({"extend", tmp.path("y.stl"), "-o", tmp.path("z.vtp"), "--ends", "outlet_9"});
+  EXPECT_EQ(unknown.code, 2);
+  EXPECT_NE(last_line(unknown.err).find("outlet_9"), std::string::npos) << unknown.err;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path("z.vtp")));
+  const RunResult mode = run({"extend", tmp.path("y.stl"), "-o", tmp.path("z.vtp"), "--mode", "curved"});
+  EXPECT_EQ(mode.code, 2);
+  EXPECT_NE(last_line(mode.err).find("straight or smooth"), std::string::npos) << mode.err;
+}
+
 // The flow inside the volume read back: steady Poiseuille's centerline velocity along a line that
 // starts and ends outside the pipe, a named point, and a time outside the saved span refused.
 TEST(Cli, SampleReadsTheFlowAlongALineAndAtPoints) {

@@ -78,6 +78,9 @@ end_names = ["in", "a", "b"]
 interior_size = 0.8
 interior_gradation = 1.1
 equal_volume_nodes = false
+[extensions]
+length = 5
+mode = "straight"
 [post]
 time = 0.21
 [[ring]]
@@ -109,6 +112,8 @@ point = [0, 3, 0]
   EXPECT_DOUBLE_EQ(c.interior.gradation, 1.1);
   EXPECT_FALSE(c.equal_volume_nodes);
   EXPECT_EQ(c.end_names, (std::vector<std::string>{"in", "a", "b"}));
+  EXPECT_DOUBLE_EQ(c.extension_length, 5.0);
+  EXPECT_EQ(c.extension_mode, "straight");
   ASSERT_TRUE(c.time.has_value());
   EXPECT_DOUBLE_EQ(*c.time, 0.21);
   ASSERT_EQ(c.rings.size(), 2u);
@@ -144,6 +149,10 @@ TEST(StudyFile, NamesTheKeyOfEveryMistake) {
   EXPECT_DOUBLE_EQ(parse_study(study_text(ring), "s.toml").layer_angle, 0.0);  // the paper's layer by default
   EXPECT_DOUBLE_EQ(parse_study(study_text(ring), "s.toml").layer_split_angle, 0.0);  // and its wall as meshed
   EXPECT_TRUE(parse_study(study_text(ring), "s.toml").equal_volume_nodes);  // volumes of equal node counts
+  EXPECT_DOUBLE_EQ(parse_study(study_text(ring), "s.toml").extension_length, 0.0);  // no extensions by default
+  EXPECT_NE(error(study_text("[extensions]\nlength = -1\n" + ring)).find("extensions.length"), std::string::npos);
+  EXPECT_NE(error(study_text("[extensions]\nmode = \"curved\"\n" + ring)).find("extensions.mode"), std::string::npos);
+  EXPECT_NE(error(study_text("[extensions]\nradii = 5\n" + ring)).find("extensions.radii"), std::string::npos);
   EXPECT_NE(error(study_text("[volume]\nequal_volume_nodes = 2\n" + ring)).find("volume.equal_volume_nodes"),
             std::string::npos);
   EXPECT_NE(error(study_text("[[ring]]\nname = \"a b\"\npoint = [0, 0, 0]\n")).find("ring[0].name"), std::string::npos);
