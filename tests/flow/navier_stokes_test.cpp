@@ -10,6 +10,7 @@
 #include "mesh/reorder.h"
 #include "post/wss.h"
 #include "remesh/adapt.h"
+#include "remesh/extend.h"
 #include "sizing/size_field.h"
 #include "synth/shapes.h"
 #include "test_support.h"
@@ -88,13 +89,13 @@ struct WssErrors {
   double mean = 0.0, worst = 0.0;
 };
 WssErrors poiseuille_wss_errors(const Wall& wall, const std::vector<Vec3>& velocity, double viscosity, double q,
-                                double R, double L, post::WssMethod method) {
+                                double R, double L, post::WssMethod method, double z0 = 0.0) {
   const double r = R * 1e-3, exact = 4.0 * viscosity * q / (M_PI * r * r * r);
   const std::vector<Vec3> wss = wall.wss(velocity, viscosity, method);
   WssErrors e;
   int count = 0;
   for (size_t v = 0; v < wall.surface.mesh.points.size(); ++v) {
-    const double z = wall.surface.mesh.points[v].z();
+    const double z = wall.surface.mesh.points[v].z() - z0;  // the pipe from z0 to z0 + L
     if (z < 0.3 * L || z > 0.7 * L) continue;
     e.mean += (wss[v].norm() - exact) / exact;
     e.worst = std::max(e.worst, std::abs(wss[v].norm() - exact) / exact);
@@ -154,6 +155,39 @@ TEST(NavierStokes, SteadyPoiseuilleInAPipeWithABoundaryLayer) {
     EXPECT_LT(std::abs(e.mean), 0.02) << post::to_string(method);
     EXPECT_LT(e.worst, 0.05) << post::to_string(method);
   }
+}
+
+// Flow extensions (issue 32): a 5 mm pipe extended by 1.5 radii at each end (remesh/extend.h: the
+// tube's own rings and triangles) carries Poiseuille's flow as a pipe of the same whole length
+// meshed in one piece: the WSS in the middle of the original pipe within half a point of the long
+// pipe's at the same distance from its inlet.
+TEST(NavierStokes, PoiseuilleInAnExtendedPipeAsInAnEquallyLongOne) {
+  const double R = 2.0, L = 5.0, extension = 1.5, Q = 0.5, h = 0.3;
+  const TriMesh pipe = synth::cylinder({.radius = R, .length = L, .resolution = h});
+  const remesh::ExtensionResult extended = remesh::extend_ends(pipe, analysis::open_ends(pipe), {.length = extension});
+  const auto ends = analysis::open_ends(extended.mesh);
+  ASSERT_EQ(ends.size(), 2u);
+  volume::VolumeOptions options;
+  options.inlet = ends[0].center.z() < ends[1].center.z() ? 0 : 1;
+  const TetMesh long_mesh = pipe_volume(R, L + 2.0 * extension * R, h);
+  const TetMesh extended_mesh =
+      volume::build_volume(extended.mesh, ends, std::vector<double>(extended.mesh.points.size(), R), options).mesh;
+  const FlowCase fc = pipe_case("steady = true", fmt::format("profile = \"parabolic\"\nflow = {}", Q), "steady.toml");
+  const double q = Q * 1e-6;
+  std::array<WssErrors, 2> errors;
+  for (int k = 0; k < 2; ++k) {
+    const TetMesh& mesh = k == 0 ? long_mesh : extended_mesh;
+    NavierStokes ns(mesh, fc);
+    ns.solve_steady();
+    // The original pipe's middle: z from 0 to L in the extended mesh, from 1.5 R to 1.5 R + L in the long one.
+    errors[k] = poiseuille_wss_errors(Wall(mesh), ns.velocity(), fc.viscosity, q, R, L, post::WssMethod::quadratic,
+                                      k == 0 ? extension * R : 0.0);
+  }
+  std::printf("Poiseuille WSS, mean error in the middle: one long pipe %+.2f %%, an extended pipe %+.2f %% (%d and %d "
+              "points)\n",
+              100 * errors[0].mean, 100 * errors[1].mean, long_mesh.num_points(), extended_mesh.num_points());
+  EXPECT_LT(std::abs(errors[1].mean), 0.03);
+  EXPECT_LT(std::abs(errors[1].mean), std::abs(errors[0].mean) + 0.005);
 }
 
 // Without a layer the first cells are as deep as the wall's edges are long: by faces the stress
