@@ -24,6 +24,7 @@
 #include <complex>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <numeric>
 #include <random>
 
@@ -188,6 +189,53 @@ TEST(NavierStokes, PoiseuilleInAnExtendedPipeAsInAnEquallyLongOne) {
               100 * errors[0].mean, 100 * errors[1].mean, long_mesh.num_points(), extended_mesh.num_points());
   EXPECT_LT(std::abs(errors[1].mean), 0.03);
   EXPECT_LT(std::abs(errors[1].mean), std::abs(errors[0].mean) + 0.005);
+}
+
+// The steady solve's flow is the flow a long unsteady run settles to (issue 29): the 180-degree bend
+// of the Newton test at Re ~ 190, constant inflow, time steps from the Stokes flow for 12 s (the
+// slowest viscous decay, R^2 / (5.78 nu), is 0.2 s), against Newton's steady flow to a 1e-10 change.
+// They differ by the stabilization's time term alone (tau_M's 4 / dt^2, which the steady equations
+// do not have): the difference falls as dt^-2 (measured, largest velocity difference over the peak:
+// 7.5e-4 at dt = 0.02 s, 1.2e-4 at 0.05, 3.1e-5 at 0.1; the linear solver's tolerance, 1e-6 or
+// 1e-10, changes nothing) and is under 1e-4 from dt = 0.1 s.
+TEST(NavierStokes, SteadyFlowIsWhereALongUnsteadyRunSettles) {
+  const double R = 2.0, Q = 2.0;
+  const TriMesh bend = synth::bend({.radius = R, .bend_radius = 6.0, .angle_deg = 180.0, .inlet_length = 8.0,
+                                    .outlet_length = 8.0, .resolution = 0.6});
+  volume::VolumeOptions options;
+  options.layer.layers = 2;
+  options.inlet = 0;
+  const TetMesh mesh =
+      volume::build_volume(bend, analysis::open_ends(bend), std::vector<double>(bend.points.size(), R), options).mesh;
+  const std::string inflow = fmt::format("profile = \"parabolic\"\nflow = {}", Q);
+  NavierStokes steady(mesh, pipe_case("steady = true\nsteady_tolerance = 1e-10\nsteady_iterations = 80\n"
+                                      "steady_method = \"newton\"",
+                                      inflow, "steady.toml"));
+  steady.solve_steady();
+  const double peak = 2.0 * Q * 1e-6 / (M_PI * R * R * 1e-6);
+  std::map<double, double> difference;
+  for (double dt : {0.05, 0.1}) {
+    const int steps = static_cast<int>(std::lround(12.0 / dt));
+    NavierStokes unsteady(mesh, pipe_case(fmt::format("dt = {}\nend = 12.0\ninitial = \"stokes\"", dt), inflow,
+                                          "unsteady.toml"));
+    unsteady.start_from_stokes();
+    double change = 1.0;
+    for (int k = 0; k < steps; ++k) change = unsteady.step().change;
+    EXPECT_LT(change, 1e-7) << "settled, dt " << dt;
+    double worst = 0.0, worst_p = 0.0, p_scale = 0.0;
+    for (int a = 0; a < mesh.num_points(); ++a) {
+      worst = std::max(worst, (unsteady.velocity()[a] - steady.velocity()[a]).norm());
+      worst_p = std::max(worst_p, std::abs(unsteady.pressure()[a] - steady.pressure()[a]));
+      p_scale = std::max(p_scale, std::abs(steady.pressure()[a]));
+    }
+    difference[dt] = worst / peak;
+    std::printf("dt %g s, %d steps: largest velocity difference %.2e of the peak, pressure %.2e of its largest\n", dt,
+                steps, worst / peak, worst_p / p_scale);
+    EXPECT_LT(worst_p / p_scale, 1e-3) << "dt " << dt;
+  }
+  EXPECT_LT(difference[0.1], 1e-4);
+  const double order = std::log(difference[0.05] / difference[0.1]) / std::log(2.0);
+  EXPECT_NEAR(order, 2.0, 0.4) << "the time term's dt^-2";
 }
 
 // Without a layer the first cells are as deep as the wall's edges are long: by faces the stress
