@@ -17,18 +17,20 @@ Command add_export_command(CLI::App& parent) {
       "A volume mesh (.msh or .vtu, as 'vesselmesh volume' writes it) for another solver: svfsi (svMultiPhysics / "
       "SimVascular: OUT/mesh-complete/ with the volume, a .vtp per boundary tag, walls_combined.vtp and the exterior, "
       "GlobalNodeID and GlobalElementID; OUT/solver.xml, a skeleton naming the faces), openfoam "
-      "(OUT/constant/polyMesh, ASCII: a cell per tetrahedron and prism, a patch per boundary tag, wall for wall*), vtu "
+      "(OUT/constant/polyMesh, ASCII: a cell per tetrahedron and prism, a patch per boundary tag, wall for wall*), fluent "
+      "(Ansys Fluent's ASCII .msh: a face zone per boundary tag, wall for wall*, velocity-inlet for inlet, "
+      "pressure-outlet otherwise), vtu "
       "(VTK, as 'volume' writes it) or medit (INRIA .mesh: vertices, triangles by tag, tetrahedra, prisms). Lengths scaled from the mesh's "
-      "unit (--mesh-units, default mm) to --units (default: m for svfsi and openfoam, the mesh's unit otherwise)");
+      "unit (--mesh-units, default mm) to --units (default: m for svfsi, openfoam and fluent, the mesh's unit otherwise)");
   struct Options {
     std::string mesh, output, format, units, mesh_units = "mm";
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
   app->add_option("VOLUME", o->mesh, "Volume mesh (.msh or .vtu)")->required();
-  app->add_option("-o,--output", o->output, "Output: a folder for svfsi and openfoam, a file (.vtu, .mesh) otherwise")
+  app->add_option("-o,--output", o->output, "Output: a folder for svfsi and openfoam, a file (.msh for fluent, .vtu, .mesh) otherwise")
       ->required();
-  app->add_option("--format", o->format, "svfsi, openfoam, vtu or medit")->required();
+  app->add_option("--format", o->format, "svfsi, openfoam, fluent, vtu or medit")->required();
   app->add_option("--units", o->units, "Length unit of the output: um, mm, cm or m");
   app->add_option("--mesh-units", o->mesh_units, "Length unit of the volume mesh (default mm)");
   add_common_options(*app, o->common);
@@ -42,7 +44,10 @@ Command add_export_command(CLI::App& parent) {
             }
             const io::Unit from = io::parse_unit(o->mesh_units);
             const io::Unit to =
-                o->units.empty() ? (format == io::ExportFormat::svfsi || format == io::ExportFormat::openfoam ? io::Unit::m : from) : io::parse_unit(o->units);
+                o->units.empty() ? (format == io::ExportFormat::svfsi || format == io::ExportFormat::openfoam ||
+                                                           format == io::ExportFormat::fluent
+                                                       ? io::Unit::m
+                                                       : from) : io::parse_unit(o->units);
             const double scale = io::millimetres_per(from) / io::millimetres_per(to);
             const std::string reading = "reading " + o->mesh;
             reporter.progress(reading, 0.0);

@@ -216,17 +216,23 @@ std::string foam_header(const std::string& cls, const std::string& object, const
       cls, note.empty() ? "" : fmt::format("    note        \"{}\";\n", note), object);
 }
 
-ExportReport write_openfoam(const TetMesh& mesh, const fs::path& out, double scale) {
-  for (const auto& [tag, name] : mesh.tag_names)
-    if (!is_file_name_safe(name))
-      throw InputError(fmt::format("boundary tag {} is named \"{}\", which cannot be a patch name: rename it", tag, name));
-  const size_t cells = mesh.tets.size() + mesh.prisms.size();
-  // Every face once: the first cell to list it owns it (the lower number), the second is its neighbour.
-  struct Face {
-    CellFace f;
-    int owner, neighbour = -1;
-  };
+// Every face of the volume once, as OpenFOAM and Fluent list them: the first cell to list a face
+// owns it (the lower number; its normal points out of it), the second is its neighbour; internal
+// faces by (owner, neighbour), then the boundary's by (tag, owner), each boundary face with its
+// tag (a quadrilateral's from a triangle on three of its corners).
+struct Face {
+  CellFace f;
+  int owner, neighbour = -1;
+};
+struct VolumeFaces {
   std::vector<Face> faces;
+  std::vector<int> internal, boundary;  // into faces, in order
+  std::vector<int> tag;                 // per face (boundary faces)
+};
+VolumeFaces volume_faces(const TetMesh& mesh) {
+  const size_t cells = mesh.tets.size() + mesh.prisms.size();
+  VolumeFaces v;
+  std::vector<Face>& faces = v.faces;
   std::map<std::array<int, 4>, int> index;
   for (size_t c = 0; c < cells; ++c)
     for (const CellFace& f : cell_faces(mesh, c)) {
@@ -240,7 +246,6 @@ ExportReport write_openfoam(const TetMesh& mesh, const fs::path& out, double sca
       }
     }
   index.clear();
-  // The boundary faces' tags: a triangle's own, a quadrilateral's from a triangle on three of its corners.
   std::map<std::array<int, 4>, int> tag_of;
   for (size_t f = 0; f < mesh.boundary.size(); ++f) {
     std::array<int, 4> key = {mesh.boundary[f][0], mesh.boundary[f][1], mesh.boundary[f][2], -1};
@@ -260,19 +265,42 @@ ExportReport write_openfoam(const TetMesh& mesh, const fs::path& out, double sca
                                  "does not match its cells (check it with 'vesselmesh quality')",
                                  f.v[0], f.v[1], f.v[2], f.n == 4 ? fmt::format(", {}", f.v[3]) : ""));
   };
-  // Internal faces by (owner, neighbour), then the boundary's by (tag, owner).
-  std::vector<int> internal, boundary;
-  std::vector<int> tag(faces.size(), 0);
+  v.tag.assign(faces.size(), 0);
   for (size_t f = 0; f < faces.size(); ++f) {
-    if (faces[f].neighbour >= 0) internal.push_back(static_cast<int>(f));
-    else tag[f] = boundary_tag(faces[f].f), boundary.push_back(static_cast<int>(f));
+    if (faces[f].neighbour >= 0) v.internal.push_back(static_cast<int>(f));
+    else v.tag[f] = boundary_tag(faces[f].f), v.boundary.push_back(static_cast<int>(f));
   }
-  std::sort(internal.begin(), internal.end(), [&](int a, int b) {
+  std::sort(v.internal.begin(), v.internal.end(), [&](int a, int b) {
     return std::pair(faces[a].owner, faces[a].neighbour) < std::pair(faces[b].owner, faces[b].neighbour);
   });
-  std::stable_sort(boundary.begin(), boundary.end(), [&](int a, int b) {
-    return std::pair(tag[a], faces[a].owner) < std::pair(tag[b], faces[b].owner);
+  std::stable_sort(v.boundary.begin(), v.boundary.end(), [&](int a, int b) {
+    return std::pair(v.tag[a], faces[a].owner) < std::pair(v.tag[b], faces[b].owner);
   });
+  return v;
+}
+
+// The boundary tags in the order of the faces (a run of faces a tag), with their face counts.
+std::vector<std::pair<int, int>> face_runs(const VolumeFaces& v) {
+  std::vector<std::pair<int, int>> runs;
+  for (int f : v.boundary) {
+    if (runs.empty() || runs.back().first != v.tag[f]) runs.push_back({v.tag[f], 0});
+    ++runs.back().second;
+  }
+  return runs;
+}
+
+void check_patch_names(const TetMesh& mesh) {
+  for (const auto& [tag, name] : mesh.tag_names)
+    if (!is_file_name_safe(name))
+      throw InputError(fmt::format("boundary tag {} is named \"{}\", which cannot be a patch name: rename it", tag, name));
+}
+
+ExportReport write_openfoam(const TetMesh& mesh, const fs::path& out, double scale) {
+  check_patch_names(mesh);
+  const size_t cells = mesh.tets.size() + mesh.prisms.size();
+  const VolumeFaces volume = volume_faces(mesh);
+  const std::vector<Face>& faces = volume.faces;
+  const std::vector<int>&internal = volume.internal, &boundary = volume.boundary;
 
   const fs::path folder = out / "constant" / "polyMesh";
   make_folder(folder);
@@ -320,11 +348,7 @@ ExportReport write_openfoam(const TetMesh& mesh, const fs::path& out, double sca
 
   text.clear();
   text.append(foam_header("polyBoundaryMesh", "boundary"));
-  std::vector<std::pair<int, int>> patches;  // tag, faces
-  for (int f : boundary) {
-    if (patches.empty() || patches.back().first != tag[f]) patches.push_back({tag[f], 0});
-    ++patches.back().second;
-  }
+  const std::vector<std::pair<int, int>> patches = face_runs(volume);  // tag, faces
   fmt::format_to(into, "{}\n(\n", patches.size());
   size_t start = internal.size();
   for (const auto& [t, count] : patches) {
@@ -337,6 +361,72 @@ ExportReport write_openfoam(const TetMesh& mesh, const fs::path& out, double sca
   text.append(std::string_view(")\n"));
   write("boundary", fmt::to_string(text));
   return report;
+}
+
+// Fluent's ASCII mesh (.msh; Ansys Fluent User's Guide, appendix "Mesh File Format"): every index
+// in hexadecimal, from 1; the zone ids of the (45 ...) sections in decimal. A face lists its nodes
+// then c0 and c1, its normal by the right-hand rule pointing to c0: an internal face as OpenFOAM's
+// (its normal out of its owner) with c0 its neighbour and c1 its owner; a boundary face reversed
+// (its normal into the domain) with c0 its cell and c1 = 0. Zones: 2 the cells ("fluid"), 3 the
+// internal faces, then one a boundary tag — wall (3) for the tags named wall*, velocity-inlet (10)
+// for "inlet", pressure-outlet (5) otherwise.
+std::string fluent_text(const TetMesh& mesh, double scale) {
+  check_patch_names(mesh);
+  const VolumeFaces volume = volume_faces(mesh);
+  const size_t cells = mesh.tets.size() + mesh.prisms.size();
+  fmt::memory_buffer out;
+  const auto into = std::back_inserter(out);
+  fmt::format_to(into, "(0 \"vesselmesh export: lengths scaled by {:g} from the mesh's unit\")\n(2 3)\n", scale);
+  fmt::format_to(into, "(10 (0 1 {:x} 0 3))\n(10 (1 1 {:x} 1 3)(\n", mesh.points.size(), mesh.points.size());
+  for (const Vec3& p : mesh.points) fmt::format_to(into, "{:.17g} {:.17g} {:.17g}\n", p.x() * scale, p.y() * scale, p.z() * scale);
+  out.append(std::string_view("))\n"));
+  fmt::format_to(into, "(12 (0 1 {:x} 0))\n", cells);
+  if (mesh.prisms.empty()) {
+    fmt::format_to(into, "(12 (2 1 {:x} 1 2))\n", cells);  // every cell a tetrahedron
+  } else {
+    fmt::format_to(into, "(12 (2 1 {:x} 1 0)(\n", cells);  // mixed: 2 a tetrahedron, 6 a wedge
+    for (size_t c = 0; c < cells; ++c) out.append(std::string_view(c < mesh.tets.size() ? "2\n" : "6\n"));
+    out.append(std::string_view("))\n"));
+  }
+  fmt::format_to(into, "(13 (0 1 {:x} 0))\n", volume.faces.size());
+  const auto face_line = [&](const CellFace& f, bool reversed, int c0, int c1) {
+    fmt::format_to(into, "{:x}", f.n);
+    for (int k = 0; k < f.n; ++k) fmt::format_to(into, " {:x}", f.v[reversed ? f.n - 1 - k : k] + 1);
+    fmt::format_to(into, " {:x} {:x}\n", c0, c1);
+  };
+  size_t first = 1;
+  if (!volume.internal.empty()) {
+    fmt::format_to(into, "(13 (3 {:x} {:x} 2 0)(\n", first, first + volume.internal.size() - 1);
+    for (int f : volume.internal) {
+      const Face& face = volume.faces[f];
+      face_line(face.f, false, face.neighbour + 1, face.owner + 1);
+    }
+    out.append(std::string_view("))\n"));
+    first += volume.internal.size();
+  }
+  struct Zone {
+    int id;
+    std::string type, name;
+  };
+  std::vector<Zone> zones = {{2, "fluid", "fluid"}, {3, "interior", "interior-fluid"}};
+  size_t at = 0;
+  for (const auto& [tag, count] : face_runs(volume)) {
+    const std::string name = tag_name(mesh, tag);
+    const bool wall = name.rfind("wall", 0) == 0;
+    const Zone zone{4 + static_cast<int>(zones.size()) - 2, wall ? "wall" : name == "inlet" ? "velocity-inlet" : "pressure-outlet",
+                    name};
+    const int bc = wall ? 3 : name == "inlet" ? 10 : 5;
+    fmt::format_to(into, "(13 ({:x} {:x} {:x} {:x} 0)(\n", zone.id, first, first + count - 1, bc);
+    for (int k = 0; k < count; ++k, ++at) {
+      const Face& face = volume.faces[volume.boundary[at]];
+      face_line(face.f, true, face.owner + 1, 0);
+    }
+    out.append(std::string_view("))\n"));
+    first += static_cast<size_t>(count);
+    zones.push_back(zone);
+  }
+  for (const Zone& z : zones) fmt::format_to(into, "(45 ({} {} {})())\n", z.id, z.type, z.name);
+  return fmt::to_string(out);
 }
 
 // Medit's .mesh, 1-based: a prism in Gmsh's order (its first triangle facing its second).
@@ -372,7 +462,8 @@ ExportFormat parse_export_format(const std::string& name) {
   if (name == "openfoam") return ExportFormat::openfoam;
   if (name == "vtu") return ExportFormat::vtu;
   if (name == "medit") return ExportFormat::medit;
-  throw InputError(fmt::format("export format \"{}\": expected svfsi, openfoam, vtu or medit", name));
+  if (name == "fluent") return ExportFormat::fluent;
+  throw InputError(fmt::format("export format \"{}\": expected svfsi, openfoam, fluent, vtu or medit", name));
 }
 
 std::string to_string(ExportFormat format) {
@@ -381,6 +472,7 @@ std::string to_string(ExportFormat format) {
     case ExportFormat::openfoam: return "openfoam";
     case ExportFormat::vtu: return "vtu";
     case ExportFormat::medit: return "medit";
+    case ExportFormat::fluent: return "fluent";
   }
   return "?";
 }
@@ -395,6 +487,9 @@ ExportReport export_volume(const TetMesh& mesh, const std::string& out, ExportFo
     TetMesh copy = mesh;
     copy.points = scaled(mesh.points, scale);
     write_vtu(out, copy);
+    report.files = {out};
+  } else if (format == ExportFormat::fluent) {
+    write_text(out, fluent_text(mesh, scale));
     report.files = {out};
   } else {
     write_text(out, medit_text(mesh, scale));

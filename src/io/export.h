@@ -16,6 +16,11 @@
 //   neighbour; owner < neighbour, each face's normal out of its owner), then the boundary faces by
 //   patch (a patch per boundary tag, type wall for the tags named wall*, patch otherwise); a prism's
 //   quadrilateral on the boundary takes the tag of the triangles that cover it.
+// - fluent: Ansys Fluent's ASCII mesh (.msh): the nodes, the cells (tetrahedra, wedges), the faces
+//   of OpenFOAM's listing (each once, indices in hexadecimal) in zones — the internal faces, then a
+//   zone per boundary tag (wall for wall*, velocity-inlet for "inlet", pressure-outlet otherwise,
+//   each named by its tag) — each face's right-hand normal pointing to its first cell (c0), a
+//   boundary face's into the domain, as Fluent writes them.
 // - vtu: the volume as `vesselmesh volume` writes it (io::write_vtu), scaled.
 // - medit: INRIA Medit .mesh (MMG, Tetgen's and many FEM codes' input): Vertices, Triangles
 //   (reference: the tag), Tetrahedra and Prisms (reference: the volume's tag; positively oriented,
@@ -29,9 +34,9 @@
 
 namespace vesselmesh::io {
 
-enum class ExportFormat { svfsi, openfoam, vtu, medit };
+enum class ExportFormat { svfsi, openfoam, vtu, medit, fluent };
 
-// "svfsi", "openfoam", "vtu" or "medit"; InputError naming the accepted ones otherwise.
+// "svfsi", "openfoam", "fluent", "vtu" or "medit"; InputError naming the accepted ones otherwise.
 ExportFormat parse_export_format(const std::string& name);
 std::string to_string(ExportFormat format);
 

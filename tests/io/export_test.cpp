@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <cstdio>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -245,6 +246,121 @@ TEST(Export, OpenFoamPolyMeshInvariants) {
     if (!prisms) {
       EXPECT_EQ(total, static_cast<int>(mesh.boundary.size()));
     }
+  }
+}
+
+// Fluent's .msh read back by hand (hexadecimal indices): the nodes in metres, the cells (tetrahedra,
+// and wedges among them where kept), every face once in a zone — the internal ones with the
+// right-hand normal from c1 to c0, the boundary ones pointing into c0 with c1 = 0 — every cell
+// closed by its faces, a zone per tag named in the (45 ...) sections with Fluent's types.
+// (bench/export_check.sh reads the same file with OpenFOAM's fluent3DMeshToFoam: checkMesh "Mesh OK".)
+TEST(Export, FluentMeshInvariants) {
+  for (bool prisms : {false, true}) {
+    SCOPED_TRACE(prisms ? "prisms" : "tetrahedra");
+    test::TemporaryFolder tmp;
+    const TetMesh mesh = pipe(prisms);
+    export_volume(mesh, tmp.path("pipe.msh"), ExportFormat::fluent, 1e-3);
+    std::istringstream in(read_file(tmp.path("pipe.msh")));
+    std::string line;
+    std::vector<Vec3> x;
+    struct FaceRow {
+      std::vector<int> v;
+      int c0, c1, zone;
+    };
+    std::vector<FaceRow> faces;
+    std::map<int, std::pair<std::string, std::string>> zones;  // id: type, name
+    std::map<int, int> zone_bc;
+    int cells = 0, declared_faces = 0, zone = -1;
+    enum { none, nodes, face_rows } reading = none;
+    while (std::getline(in, line)) {
+      if (line == "))") {
+        reading = none;
+        continue;
+      }
+      if (reading == nodes) {
+        Vec3 v;
+        std::istringstream(line) >> v[0] >> v[1] >> v[2];
+        x.push_back(v);
+        continue;
+      }
+      if (reading == face_rows) {
+        std::istringstream row(line);
+        row >> std::hex;
+        int n = 0;
+        row >> n;
+        FaceRow f;
+        f.v.resize(static_cast<size_t>(n));
+        for (int& k : f.v) row >> k, --k;
+        row >> f.c0 >> f.c1;
+        f.zone = zone;
+        faces.push_back(f);
+        continue;
+      }
+      unsigned a = 0, b = 0, c = 0, d = 0, e = 0;
+      char name[64] = "", type[64] = "";
+      if (std::sscanf(line.c_str(), "(10 (1 %x %x %x %x)(", &a, &b, &c, &d) == 4) reading = nodes;
+      else if (std::sscanf(line.c_str(), "(12 (0 1 %x 0))", &a) == 1) cells = static_cast<int>(a);
+      else if (std::sscanf(line.c_str(), "(13 (0 1 %x 0))", &a) == 1) declared_faces = static_cast<int>(a);
+      else if (std::sscanf(line.c_str(), "(13 (%x %x %x %x %x)(", &a, &b, &c, &d, &e) == 5) {
+        reading = face_rows;
+        zone = static_cast<int>(a);
+        zone_bc[zone] = static_cast<int>(d);
+        EXPECT_EQ(static_cast<int>(b), static_cast<int>(faces.size()) + 1) << "zone " << zone << " starts after the last";
+      } else if (std::sscanf(line.c_str(), "(45 (%u %63s %63[^)])())", &a, type, name) == 3) {
+        zones[static_cast<int>(a)] = {type, name};
+      }
+    }
+    ASSERT_EQ(static_cast<int>(x.size()), mesh.num_points());
+    EXPECT_NEAR(x[0].x(), mesh.points[0].x() * 1e-3, 1e-15);
+    ASSERT_EQ(cells, mesh.num_tets() + mesh.num_prisms());
+    ASSERT_EQ(static_cast<int>(faces.size()), declared_faces);
+    // Cell centres from the faces' corners.
+    std::vector<std::set<int>> corners(static_cast<size_t>(cells) + 1);
+    for (const FaceRow& f : faces)
+      for (int c : {f.c0, f.c1})
+        if (c > 0) corners[static_cast<size_t>(c)].insert(f.v.begin(), f.v.end());
+    std::vector<Vec3> centre(static_cast<size_t>(cells) + 1, Vec3::Zero());
+    for (int c = 1; c <= cells; ++c) {
+      ASSERT_EQ(corners[c].size(), c <= mesh.num_tets() ? 4u : 6u) << "cell " << c;
+      for (int k : corners[c]) centre[c] += x[k] / static_cast<double>(corners[c].size());
+    }
+    std::vector<Vec3> closure(static_cast<size_t>(cells) + 1, Vec3::Zero());
+    std::set<std::vector<int>> seen;
+    std::map<int, int> boundary_faces;  // zone: count
+    for (const FaceRow& f : faces) {
+      std::vector<int> key = f.v;
+      std::sort(key.begin(), key.end());
+      ASSERT_TRUE(seen.insert(key).second) << "a face twice";
+      Vec3 area = Vec3::Zero(), middle = Vec3::Zero();
+      for (size_t k = 0; k < f.v.size(); ++k) {
+        area += 0.5 * x[f.v[k]].cross(x[f.v[(k + 1) % f.v.size()]]);
+        middle += x[f.v[k]] / static_cast<double>(f.v.size());
+      }
+      ASSERT_GT(f.c0, 0);
+      ASSERT_GT(area.dot(centre[f.c0] - middle), 0.0) << "a face's normal not towards c0";
+      closure[f.c0] -= area;
+      if (f.c1 > 0) {
+        ASSERT_EQ(f.zone, 3) << "an internal face outside the interior zone";
+        ASSERT_GT(area.dot(middle - centre[f.c1]), 0.0) << "a face's normal not out of c1";
+        closure[f.c1] += area;
+      } else {
+        ASSERT_NE(f.zone, 3) << "a boundary face in the interior zone";
+        ++boundary_faces[f.zone];
+      }
+    }
+    for (int c = 1; c <= cells; ++c) ASSERT_LT(closure[c].norm(), 1e-18) << "cell " << c << " not closed";
+    // The zones: the cells, the interior, a zone per tag with Fluent's type and bc code.
+    EXPECT_EQ(zones[2].first, "fluid");
+    EXPECT_EQ(zones[3].first, "interior");
+    EXPECT_EQ(zone_bc[3], 2);
+    std::map<std::string, std::string> type_of;
+    for (const auto& [id, zone_text] : zones) type_of[zone_text.second] = zone_text.first;
+    EXPECT_EQ(type_of["wall"], "wall");
+    EXPECT_EQ(type_of["inlet"], "velocity-inlet");
+    EXPECT_EQ(type_of["outlet_1"], "pressure-outlet");
+    EXPECT_EQ(boundary_faces.size(), mesh.tag_names.size());
+    for (const auto& [id, zone_text] : zones)
+      if (id > 3) EXPECT_EQ(zone_bc[id], zone_text.first == "wall" ? 3 : zone_text.first == "velocity-inlet" ? 10 : 5);
   }
 }
 
