@@ -19,18 +19,20 @@ Command add_export_command(CLI::App& parent) {
       "GlobalNodeID and GlobalElementID; OUT/solver.xml, a skeleton naming the faces), openfoam "
       "(OUT/constant/polyMesh, ASCII: a cell per tetrahedron and prism, a patch per boundary tag, wall for wall*), fluent "
       "(Ansys Fluent's ASCII .msh: a face zone per boundary tag, wall for wall*, velocity-inlet for inlet, "
-      "pressure-outlet otherwise), vtu "
+      "pressure-outlet otherwise), xdmf (XDMF + HDF5 as dolfinx reads them: OUT/mesh.h5, OUT/mesh.xdmf with the "
+      "cell tags, OUT/facets.xdmf with the facet tags; tetrahedra only), vtu "
       "(VTK, as 'volume' writes it) or medit (INRIA .mesh: vertices, triangles by tag, tetrahedra, prisms). Lengths scaled from the mesh's "
-      "unit (--mesh-units, default mm) to --units (default: m for svfsi, openfoam and fluent, the mesh's unit otherwise)");
+      "unit (--mesh-units, default mm) to --units (default: m for svfsi, openfoam, xdmf and fluent, the mesh's unit "
+      "otherwise)");
   struct Options {
     std::string mesh, output, format, units, mesh_units = "mm";
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
   app->add_option("VOLUME", o->mesh, "Volume mesh (.msh or .vtu)")->required();
-  app->add_option("-o,--output", o->output, "Output: a folder for svfsi and openfoam, a file (.msh for fluent, .vtu, .mesh) otherwise")
+  app->add_option("-o,--output", o->output, "Output: a folder for svfsi, openfoam and xdmf, a file (.msh for fluent, .vtu, .mesh) otherwise")
       ->required();
-  app->add_option("--format", o->format, "svfsi, openfoam, fluent, vtu or medit")->required();
+  app->add_option("--format", o->format, "svfsi, openfoam, xdmf, fluent, vtu or medit")->required();
   app->add_option("--units", o->units, "Length unit of the output: um, mm, cm or m");
   app->add_option("--mesh-units", o->mesh_units, "Length unit of the volume mesh (default mm)");
   add_common_options(*app, o->common);
@@ -45,7 +47,7 @@ Command add_export_command(CLI::App& parent) {
             const io::Unit from = io::parse_unit(o->mesh_units);
             const io::Unit to =
                 o->units.empty() ? (format == io::ExportFormat::svfsi || format == io::ExportFormat::openfoam ||
-                                                           format == io::ExportFormat::fluent
+                                                           format == io::ExportFormat::fluent || format == io::ExportFormat::xdmf
                                                        ? io::Unit::m
                                                        : from) : io::parse_unit(o->units);
             const double scale = io::millimetres_per(from) / io::millimetres_per(to);

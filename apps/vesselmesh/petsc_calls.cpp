@@ -2,6 +2,7 @@
 // PETSc's module, opened on first use (see flow/petsc_module.h for why).
 #include "flow/linear_solver.h"
 #include "flow/petsc_module.h"
+#include "io/hdf5_file.h"
 #include "modules.h"
 
 #include <cstdlib>
@@ -87,3 +88,11 @@ void LinearSolver::set_low_rank_coefficients(const std::vector<double>& coeffici
 std::string LinearSolver::description() const { return petsc_calls().description(*impl_->inside); }
 
 }  // namespace vesselmesh::flow
+
+namespace vesselmesh::io {
+
+void write_hdf5(const std::string& path, const std::vector<Hdf5Dataset>& datasets) {
+  flow::petsc_calls().write_hdf5(path, datasets);
+}
+
+}  // namespace vesselmesh::io

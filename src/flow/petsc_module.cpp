@@ -43,6 +43,7 @@ extern "C" __attribute__((visibility("default"))) const vesselmesh::flow::PetscC
       [](LinearSolver& solver, const std::vector<double>& coefficients) {
         solver.set_low_rank_coefficients(coefficients);
       },
+      &vesselmesh::io::write_hdf5,
   };
   return &calls;
 }

@@ -1,4 +1,5 @@
-// PETSc, loaded only when a command needs it (the flow solver), as Gmsh is (io/gmsh_module.h):
+// PETSc, loaded only when a command needs it (the flow solver; the HDF5 its build brings, for the
+// XDMF export, io/hdf5_file.h), as Gmsh is (io/gmsh_module.h):
 // PETSc and what it brings (MPI, hypre, MUMPS, Trilinos, ...) cost every command 0.07-0.09 s
 // of symbol binding at start. flow/linear_solver.cpp is built into vesselmesh_lib, which the
 // tests and benchmarks link with PETSc, and into the module libvesselmesh-petsc.so, which the
@@ -6,6 +7,7 @@
 #pragma once
 
 #include "flow/linear_solver.h"
+#include "io/hdf5_file.h"
 
 namespace vesselmesh::flow {
 
@@ -13,7 +15,7 @@ inline constexpr const char* kPetscModuleFile = "libvesselmesh-petsc.so";
 
 // The module's entry points: a LinearSolver made, used and destroyed inside the module; `layout`
 // first, as in io/gmsh_module.h (raise it when this table or a type it passes changes).
-inline constexpr int kPetscCallsLayout = 13;
+inline constexpr int kPetscCallsLayout = 14;
 struct PetscCalls {
   int layout;
   int (*process_count)();
@@ -44,6 +46,7 @@ struct PetscCalls {
   std::string (*description)(const LinearSolver& solver);
   void (*set_low_rank_columns)(LinearSolver& solver, const std::vector<std::vector<double>>& columns);
   void (*set_low_rank_coefficients)(LinearSolver& solver, const std::vector<double>& coefficients);
+  void (*write_hdf5)(const std::string& path, const std::vector<io::Hdf5Dataset>& datasets);
 };
 
 }  // namespace vesselmesh::flow

@@ -1,6 +1,7 @@
 #include "io/export.h"
 
 #include "io/atomic_file.h"
+#include "io/hdf5_file.h"
 #include "io/vtk_formats.h"
 #include "mesh/error.h"
 
@@ -429,6 +430,70 @@ std::string fluent_text(const TetMesh& mesh, double scale) {
   return fmt::to_string(out);
 }
 
+// XDMF + HDF5 as dolfinx reads them (XDMFFile.read_mesh, read_meshtags) and meshio, ParaView and
+// VisIt open them: OUT/mesh.h5 with /mesh/geometry (points x 3), /mesh/topology (tetrahedra x 4,
+// from 0), /mesh/cell_tags, /facets/topology (boundary triangles x 3), /facets/facet_tags; and two
+// light files naming them, OUT/mesh.xdmf (the grid "mesh" with the attribute "cell_tags") and
+// OUT/facets.xdmf (the grid "facet_tags" over the same points, with the attribute "facet_tags" and
+// the tags' names in an Information as meshio writes them), the two files of the meshio-to-dolfinx route. dolfinx meshes
+// are of one cell type: prisms are refused.
+ExportReport write_xdmf(const TetMesh& mesh, const fs::path& out, double scale) {
+  check_patch_names(mesh);  // names in XML
+  if (!mesh.prisms.empty())
+    throw InputError(fmt::format("the volume has {} prisms: XDMF for dolfinx holds one cell type; build the volume "
+                                 "without --keep-prisms (its prisms cut into tetrahedra)",
+                                 mesh.prisms.size()));
+  make_folder(out);
+  std::vector<Hdf5Dataset> data(5);
+  data[0] = {"/mesh/geometry", {static_cast<uint64_t>(mesh.points.size()), 3}, {}, {}, false};
+  for (const Vec3& p : mesh.points)
+    for (int i = 0; i < 3; ++i) data[0].real.push_back(p[i] * scale);
+  data[1] = {"/mesh/topology", {static_cast<uint64_t>(mesh.tets.size()), 4}, {}, {}, true};
+  for (const Tet& t : mesh.tets) data[1].integer.insert(data[1].integer.end(), t.begin(), t.end());
+  data[2] = {"/mesh/cell_tags", {static_cast<uint64_t>(mesh.tets.size())}, {}, {}, true};
+  data[2].integer.assign(mesh.tets.size(), mesh.volume_tag);
+  data[3] = {"/facets/topology", {static_cast<uint64_t>(mesh.boundary.size()), 3}, {}, {}, true};
+  for (const Triangle& f : mesh.boundary) data[3].integer.insert(data[3].integer.end(), f.begin(), f.end());
+  data[4] = {"/facets/facet_tags", {static_cast<uint64_t>(mesh.boundary.size())}, {}, {}, true};
+  data[4].integer.assign(mesh.boundary_tags.begin(), mesh.boundary_tags.end());
+  ExportReport report;
+  report.files.push_back((out / "mesh.h5").string());
+  write_hdf5(report.files.back(), data);
+
+  const size_t n = mesh.points.size(), cells = mesh.tets.size(), facets = mesh.boundary.size();
+  const std::string geometry = fmt::format(
+      "      <Geometry GeometryType=\"XYZ\">\n        <DataItem Dimensions=\"{} 3\" NumberType=\"Float\" "
+      "Precision=\"8\" Format=\"HDF\">mesh.h5:/mesh/geometry</DataItem>\n      </Geometry>\n",
+      n);
+  const auto grid = [&](const std::string& name, const char* type, size_t count, int corners, const std::string& group,
+                        const std::string& attribute, const std::string& values, const std::string& information) {
+    return fmt::format(
+        "    <Grid Name=\"{0}\" GridType=\"Uniform\">\n{8}      <Topology TopologyType=\"{1}\" NumberOfElements=\"{2}\" "
+        "NodesPerElement=\"{3}\">\n        <DataItem Dimensions=\"{2} {3}\" NumberType=\"Int\" Precision=\"8\" "
+        "Format=\"HDF\">mesh.h5:/{4}/topology</DataItem>\n      </Topology>\n{5}      <Attribute Name=\"{6}\" "
+        "AttributeType=\"Scalar\" Center=\"Cell\">\n        <DataItem Dimensions=\"{2}\" NumberType=\"Int\" "
+        "Precision=\"8\" Format=\"HDF\">mesh.h5:/{4}/{7}</DataItem>\n      </Attribute>\n    </Grid>\n",
+        name, type, count, corners, group, geometry, attribute, values, information);
+  };
+  const std::string head = "<?xml version=\"1.0\"?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n";
+  const std::string tail = "  </Domain>\n</Xdmf>\n";
+  // The tags' names as meshio keeps them (its field_data: a name's tag and dimension).
+  std::string names;
+  for (const auto& [tag, name] : mesh.tag_names) names += fmt::format("<map key=\"{}\" dim=\"2\">{}</map>", name, tag);
+  report.files.push_back((out / "mesh.xdmf").string());
+  write_text(report.files.back(),
+             head + grid("mesh", "Tetrahedron", cells, 4, "mesh", "cell_tags", "cell_tags", "") + tail);
+  report.files.push_back((out / "facets.xdmf").string());
+  write_text(report.files.back(),
+             head +
+                 grid("facet_tags", "Triangle", facets, 3, "facets", "facet_tags", "facet_tags",
+                      fmt::format("      <Information Name=\"Information\" Value=\"{}\"><![CDATA[<main>{}</main>]]>"
+                                  "</Information>\n",
+                                  mesh.tag_names.size(), names)) +
+                 tail);
+  return report;
+}
+
 // Medit's .mesh, 1-based: a prism in Gmsh's order (its first triangle facing its second).
 std::string medit_text(const TetMesh& mesh, double scale) {
   fmt::memory_buffer out;
@@ -463,7 +528,8 @@ ExportFormat parse_export_format(const std::string& name) {
   if (name == "vtu") return ExportFormat::vtu;
   if (name == "medit") return ExportFormat::medit;
   if (name == "fluent") return ExportFormat::fluent;
-  throw InputError(fmt::format("export format \"{}\": expected svfsi, openfoam, fluent, vtu or medit", name));
+  if (name == "xdmf") return ExportFormat::xdmf;
+  throw InputError(fmt::format("export format \"{}\": expected svfsi, openfoam, xdmf, fluent, vtu or medit", name));
 }
 
 std::string to_string(ExportFormat format) {
@@ -473,6 +539,7 @@ std::string to_string(ExportFormat format) {
     case ExportFormat::vtu: return "vtu";
     case ExportFormat::medit: return "medit";
     case ExportFormat::fluent: return "fluent";
+    case ExportFormat::xdmf: return "xdmf";
   }
   return "?";
 }
@@ -488,6 +555,8 @@ ExportReport export_volume(const TetMesh& mesh, const std::string& out, ExportFo
     copy.points = scaled(mesh.points, scale);
     write_vtu(out, copy);
     report.files = {out};
+  } else if (format == ExportFormat::xdmf) {
+    report = write_xdmf(mesh, fs::path(out), scale);
   } else if (format == ExportFormat::fluent) {
     write_text(out, fluent_text(mesh, scale));
     report.files = {out};

@@ -16,6 +16,11 @@
 //   neighbour; owner < neighbour, each face's normal out of its owner), then the boundary faces by
 //   patch (a patch per boundary tag, type wall for the tags named wall*, patch otherwise); a prism's
 //   quadrilateral on the boundary takes the tag of the triangles that cover it.
+// - xdmf: XDMF + HDF5 as dolfinx (FEniCSx, VaMPy) reads them: OUT/mesh.h5, OUT/mesh.xdmf (grid
+//   "mesh", tetrahedra, attribute "cell_tags") and OUT/facets.xdmf (grid "facet_tags", the boundary
+//   triangles over the same points, attribute "facet_tags"; the tags' names in an Information);
+//   XDMFFile.read_mesh(name="mesh"), read_meshtags(mesh, name="facet_tags"). One cell type:
+//   prisms are refused. The HDF5 data through PETSc's module (io/hdf5_file.h).
 // - fluent: Ansys Fluent's ASCII mesh (.msh): the nodes, the cells (tetrahedra, wedges), the faces
 //   of OpenFOAM's listing (each once, indices in hexadecimal) in zones — the internal faces, then a
 //   zone per boundary tag (wall for wall*, velocity-inlet for "inlet", pressure-outlet otherwise,
@@ -34,9 +39,9 @@
 
 namespace vesselmesh::io {
 
-enum class ExportFormat { svfsi, openfoam, vtu, medit, fluent };
+enum class ExportFormat { svfsi, openfoam, vtu, medit, fluent, xdmf };
 
-// "svfsi", "openfoam", "fluent", "vtu" or "medit"; InputError naming the accepted ones otherwise.
+// "svfsi", "openfoam", "xdmf", "fluent", "vtu" or "medit"; InputError naming the accepted ones otherwise.
 ExportFormat parse_export_format(const std::string& name);
 std::string to_string(ExportFormat format);
 

@@ -8,6 +8,7 @@
 #include "test_support.h"
 #include "volume/volume_mesh.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
@@ -21,6 +22,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <set>
 #include <sstream>
@@ -359,9 +361,47 @@ TEST(Export, FluentMeshInvariants) {
     EXPECT_EQ(type_of["inlet"], "velocity-inlet");
     EXPECT_EQ(type_of["outlet_1"], "pressure-outlet");
     EXPECT_EQ(boundary_faces.size(), mesh.tag_names.size());
-    for (const auto& [id, zone_text] : zones)
-      if (id > 3) EXPECT_EQ(zone_bc[id], zone_text.first == "wall" ? 3 : zone_text.first == "velocity-inlet" ? 10 : 5);
+    for (const auto& [id, zone_text] : zones) {
+      if (id > 3) {
+        EXPECT_EQ(zone_bc[id], zone_text.first == "wall" ? 3 : zone_text.first == "velocity-inlet" ? 10 : 5);
+      }
+    }
   }
+}
+
+// XDMF + HDF5 and Fluent read back by meshio (Debian's python3-meshio and python3-h5py, under
+// Debian's /usr/bin/python3; skipped with a message without them): the XDMF's points, tetrahedra
+// (positive, in metres), cell tags, facet triangles per tag and the tags' names, the HDF5 layout;
+// Fluent's points and its face zones (the interior, a zone a tag) — read_back_with_meshio.py.
+// A volume with prisms is refused for XDMF (dolfinx holds one cell type).
+TEST(Export, XdmfAndFluentReadByMeshio) {
+  test::TemporaryFolder tmp;
+  const TetMesh mesh = pipe();
+  export_volume(mesh, tmp.path("xdmf"), ExportFormat::xdmf, 1e-3);
+  export_volume(mesh, tmp.path("pipe.msh"), ExportFormat::fluent, 1e-3);
+  EXPECT_TRUE(std::filesystem::exists(tmp.path("xdmf/mesh.h5")));
+  EXPECT_NE(read_file(tmp.path("xdmf/mesh.xdmf")).find("mesh.h5:/mesh/topology"), std::string::npos);
+  try {
+    export_volume(pipe(true), tmp.path("prisms"), ExportFormat::xdmf, 1e-3);
+    ADD_FAILURE() << "prisms in XDMF";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("one cell type"), std::string::npos) << e.what();
+  }
+  if (std::system("/usr/bin/python3 -c 'import meshio, h5py' >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "Debian's python3-meshio and python3-h5py are needed (scripts/install-deps installs them)";
+  std::map<std::string, int> per_tag;
+  for (size_t f = 0; f < mesh.boundary.size(); ++f) ++per_tag[mesh.tag_names.at(mesh.boundary_tags[f])];
+  const int internal = (4 * mesh.num_tets() - static_cast<int>(mesh.boundary.size())) / 2;
+  std::string command = fmt::format("/usr/bin/python3 {}/read_back_with_meshio.py {} {} {} {} {}",
+                                    std::filesystem::path(__FILE__).parent_path().string(), tmp.path("xdmf"),
+                                    tmp.path("pipe.msh"), mesh.num_points(), mesh.num_tets(), internal);
+  for (const auto& [name, count] : per_tag) command += fmt::format(" {}={}", name, count);
+  command += " >" + tmp.path("meshio.log") + " 2>&1";
+  const int code = std::system(command.c_str());
+  const std::string log = read_file(tmp.path("meshio.log"));
+  std::printf("%s", log.c_str());
+  EXPECT_EQ(code, 0) << log;
+  EXPECT_NE(log.find("meshio"), std::string::npos) << log;
 }
 
 // Medit's .mesh: every section's count, 1-based corners, references the tags; a prism in Gmsh's
