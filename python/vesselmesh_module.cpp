@@ -30,9 +30,11 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <toml++/toml.h>
 
 #include <filesystem>
 #include <optional>
+#include <sstream>
 #include <string>
 
 namespace py = pybind11;
@@ -126,6 +128,50 @@ TetMesh to_volume(const py::dict& d) {
 }
 
 sizing::SizeKind kind_of(const std::string& name) { return sizing::parse_size_kind(name); }
+
+// A case given as a dict: the same keys as the TOML file ({"mesh": ..., "time": {...}, "boundary":
+// [{...}, ...]}), turned into TOML and read by the same reader (the same checks and messages).
+void add_value(toml::table& table, const std::string& key, const py::handle& value);
+toml::array to_array(const py::handle& list, const std::string& key) {
+  toml::array a;
+  for (const py::handle& item : list) {
+    toml::table holder;
+    add_value(holder, key, item);
+    a.push_back(std::move(*holder.get(key)));
+  }
+  return a;
+}
+void add_value(toml::table& table, const std::string& key, const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) {
+    table.insert_or_assign(key, value.cast<bool>());
+  } else if (py::isinstance<py::int_>(value)) {
+    table.insert_or_assign(key, value.cast<int64_t>());
+  } else if (py::isinstance<py::float_>(value)) {
+    table.insert_or_assign(key, value.cast<double>());
+  } else if (py::isinstance<py::str>(value)) {
+    table.insert_or_assign(key, value.cast<std::string>());
+  } else if (py::isinstance<py::dict>(value)) {
+    toml::table inner;
+    for (const auto& [k, v] : value.cast<py::dict>()) add_value(inner, py::str(k).cast<std::string>(), v);
+    table.insert_or_assign(key, std::move(inner));
+  } else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+    table.insert_or_assign(key, to_array(value, key));
+  } else {
+    throw InputError(fmt::format("case key \"{}\": a {} is not a TOML value (give numbers, strings, booleans, lists "
+                                 "or dicts)",
+                                 key, py::str(value.get_type().attr("__name__")).cast<std::string>()));
+  }
+}
+flow::FlowCase case_of(const py::object& given) {
+  if (py::isinstance<py::str>(given)) return flow::read_case(given.cast<std::string>());
+  if (!py::isinstance<py::dict>(given)) throw InputError("case: give a case file's path or a dict of its keys");
+  toml::table root;
+  for (const auto& [k, v] : given.cast<py::dict>()) add_value(root, py::str(k).cast<std::string>(), v);
+  std::ostringstream text;
+  text << root;
+  // Paths in it (the mesh, waveforms) are taken from the working folder.
+  return flow::parse_case(text.str(), (std::filesystem::current_path() / "case (a dict)").string());
+}
 
 // The centerlines and distance map of a surface (ValueError when it has no ends to trace between).
 centerline::DistanceMap distance_of(const TriMesh& mesh) { return centerline::distance_map(mesh, centerline::extract(mesh)); }
@@ -349,8 +395,8 @@ PYBIND11_MODULE(vesselmesh, m) {
       py::arg("path"), py::arg("volume"), "Writes a volume dict as .msh (Gmsh 4.1, for `simulate`) or .vtu.");
   m.def(
       "simulate",
-      [](const std::string& case_file, const std::string& output, const std::string& mesh) {
-        flow::FlowCase fc = flow::read_case(case_file);
+      [](const py::object& case_given, const std::string& output, const std::string& mesh) {
+        flow::FlowCase fc = case_of(case_given);
         if (!mesh.empty()) fc.mesh = mesh;
         flow::SimulationSummary s;
         {
@@ -363,8 +409,10 @@ PYBIND11_MODULE(vesselmesh, m) {
                         py::arg("steady_residual") = s.steady_residual, py::arg("output") = output);
       },
       py::arg("case"), py::arg("output"), py::arg("mesh") = "",
-      "Runs a flow case file (TOML, as `vesselmesh simulate`; `mesh` replaces its mesh) into the folder `output` "
-      "(fluid.pvd, wall.pvd, log.csv, summary.json); returns the summary.");
+      "Runs a flow case — a case file (TOML, as `vesselmesh simulate`) or a dict of the same keys, e.g. "
+      "{'mesh': 'volume.msh', 'time': {'steady': True}, 'boundary': [{'tag': 'inlet', 'type': 'velocity', 'flow': 1.0}, "
+      "...]} (its paths from the working folder) — into the folder `output` (fluid.pvd, wall.pvd, log.csv, "
+      "summary.json); `mesh` replaces its mesh. Returns the summary.");
   m.def(
       "wss_ring",
       [](const std::string& results, const std::vector<double>& point, const std::vector<double>& normal,
