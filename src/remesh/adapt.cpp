@@ -768,9 +768,21 @@ RemeshResult fit_count(const Engine& engine, const std::vector<Sym3>& metrics, d
     const double moved = std::log(count / std::max(1.0, last)) / std::log(target_triangles / std::max(1.0, last));
     weak_steps = proportional && !(moved >= 0.25) ? weak_steps + 1 : 0;
     if (weak_steps == 2 && std::abs(count / target_triangles - 1.0) > tolerance) {
-      reporter.info(fmt::format("the count moved by {:.0f} % of the step asked ({:.0f} triangles), the second such "
-                                "step: a bound holds it (the distance bound); keeping the closest run ({} triangles)",
-                                100.0 * moved, count, result.stats.triangles));
+      // Which bound: the distance bound where it refined or tightened anything; else none did and
+      // the mesh's edges are all within the unit band of the scaled field already (the remesher
+      // leaves edges of metric length 1/sqrt 2 to sqrt 2 alone, as MMG does: a structured input
+      // near the size asked stays as it is).
+      const bool distance_bound = next.stats.refinements > 0 || next.stats.tightened > 0 ||
+                                  result.stats.refinements > 0 || result.stats.tightened > 0;
+      reporter.info(fmt::format(
+          "the count moved by {:.0f} % of the step asked ({:.0f} triangles), the second such step: {}; keeping the "
+          "closest run ({} triangles)",
+          100.0 * moved, count,
+          distance_bound ? "a bound holds it (the distance bound: --hausdorff, --hausdorff-relative)"
+                         : "no bound acted, the edges are within the unit band of the field already (the remesher "
+                           "leaves edges of 1/sqrt(2) to sqrt(2) times the size asked alone): a count this near the "
+                           "input's own is not reached by scaling",
+          result.stats.triangles));
       break;
     }
   }
