@@ -16,7 +16,7 @@ Command add_extend_command(CLI::App& parent) {
       "extend",
       "Flow extensions: adds to each chosen open end a tube of --length times the end's equivalent radius along the "
       "end's outward normal (as VMTK's vmtkflowextensions), its rings about the wall's triangle size there apart, the "
-      "end's shape turning into a circle of the end's equivalent radius over the first two radii, and, in smooth "
+      "end's shape turning into a circle of the end's equivalent radius over min(length / 2, 2) radii, and, in smooth "
       "mode, the tube leaving the wall in the wall's own direction (no crease); the new end is planar and normal to "
       "the axis. Labels follow the wall triangles the tube grows from. Prints each moved end's new centre (name ends "
       "by it: 'volume --end NAME:x,y,z'). Remesh the result before 'volume': the tube's triangles are the loop's "
