@@ -15,12 +15,14 @@ Command add_extend_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand(
       "extend",
       "Flow extensions: adds to each chosen open end a tube of --length times the end's equivalent radius along the "
-      "end's outward normal (as VMTK's vmtkflowextensions), its rings about the wall's triangle size there apart, the "
+      "end's outward normal (as VMTK's vmtkflowextensions), its rings about the wall's triangle size there apart, "
+      "each of as many points as the end's loop evenly spaced (every other shifted by half: near-equilateral "
+      "triangles), the "
       "end's shape turning into a circle of the end's equivalent radius over min(length / 2, 2) radii, and, in smooth "
       "mode, the tube leaving the wall in the wall's own direction (no crease); the new end is planar and normal to "
       "the axis. Labels follow the wall triangles the tube grows from. Prints each moved end's new centre (name ends "
-      "by it: 'volume --end NAME:x,y,z'). Remesh the result before 'volume': the tube's triangles are the loop's "
-      "columns cut in two");
+      "by it: 'volume --end NAME:x,y,z'). Remesh the result before 'volume', as the study does (the tube keeps the "
+      "loop's own spacing next to it)");
   struct Options {
     SurfaceInput surface;
     std::string output, ends = "all", mode = "smooth";

@@ -96,6 +96,23 @@ ExtensionResult extend_ends(const TriMesh& mesh, const std::vector<analysis::Ope
         if (away.norm() > 0.0) direction[i] += away.normalized();
       }
     }
+    // The rings: m points each, evenly spaced along the loop's arc length (parameter t in [0, 1),
+    // t = 0 at loop point 0), every other ring shifted by half a spacing (near-equilateral
+    // triangles); the loop's own points may be uneven (an edited segmentation's), the rings are not.
+    std::vector<double> at(m + 1, 0.0);  // loop point i's parameter
+    for (int i = 0; i < m; ++i) at[i + 1] = at[i] + (mesh.points[loop[(i + 1) % m]] - mesh.points[loop[i]]).norm() / perimeter;
+    at[m] = 1.0;
+    const auto edge_at = [&](double t) {  // the loop edge holding parameter t (mod 1)
+      t -= std::floor(t);
+      return std::clamp(static_cast<int>(std::upper_bound(at.begin(), at.end(), t) - at.begin()) - 1, 0, m - 1);
+    };
+    // The loop's sense about n and a frame across n: a ring's circle point at parameter t is at the
+    // angle 2 pi t from loop point 0's direction, in the loop's sense.
+    double turn = 0.0;
+    for (int i = 0; i < m; ++i) turn += across[i].cross(across[(i + 1) % m]).dot(n);
+    const Vec3 eu = across[0].norm() > 0.0 ? Vec3(across[0].normalized()) : Vec3(n.unitOrthogonal());
+    const Vec3 ev = (turn >= 0.0 ? 1.0 : -1.0) * n.cross(eu);
+
     const double spacing = 0.87 * perimeter / m;  // about the wall's triangle height there
     const int rings = std::max(2, static_cast<int>(std::ceil(length / spacing)));
     const double blend = std::min(0.5 * length, 2.0 * radius);
@@ -103,7 +120,32 @@ ExtensionResult extend_ends(const TriMesh& mesh, const std::vector<analysis::Ope
     const double angle = 2.0 * std::numbers::pi / m;
     const double circle = radius * std::sqrt(angle / std::sin(angle));
 
+    // A band between two rings (points and their parameters, increasing from the first), each
+    // triangle oriented as the wall: the two rings zipped by parameter.
+    const auto band = [&](const std::vector<int>& lower, const std::vector<double>& lower_at, const std::vector<int>& upper,
+                          const std::vector<double>& upper_at) {
+      const int nl = static_cast<int>(lower.size()), nu = static_cast<int>(upper.size());
+      int i = 0, k = 0;
+      while (i < nl || k < nu) {
+        const double next_lower = i + 1 < nl ? lower_at[i + 1] : 1.0 + lower_at[0];
+        const double next_upper = k + 1 < nu ? upper_at[k + 1] : 1.0 + upper_at[0];
+        const int a = lower[i % nl], b = upper[k % nu];
+        double t = 0.0;
+        if (k >= nu || (i < nl && next_lower <= next_upper)) {  // along the lower ring
+          out.triangles.push_back({lower[(i + 1) % nl], a, b});
+          t = 0.5 * (lower_at[i] + next_lower);
+          ++i;
+        } else {  // along the upper ring
+          out.triangles.push_back({a, b, upper[(k + 1) % nu]});
+          t = 0.5 * (upper_at[k] + next_upper);
+          ++k;
+        }
+        if (mesh.has_labels()) out.labels.push_back(mesh.labels[edge_triangle[edge_at(t)]]);
+      }
+    };
+
     std::vector<int> previous(loop.begin(), loop.end());
+    std::vector<double> previous_at(at.begin(), at.end() - 1);
     for (int j = 1; j <= rings; ++j) {
       const double d = length * j / rings;
       const double w = smoothstep(d / blend);
@@ -111,34 +153,29 @@ ExtensionResult extend_ends(const TriMesh& mesh, const std::vector<analysis::Ope
       // n by d = blend: phi(0) = 0, phi'(0) = 1, phi(blend) = phi'(blend) = 0.
       const double phi = d < blend ? d * (1.0 - d / blend) * (1.0 - d / blend) : 0.0;
       std::vector<int> ring(m);
-      for (int i = 0; i < m; ++i) {
-        const double r = across[i].norm();
-        const Vec3 radial = r > 0.0 ? Vec3(across[i] / r) : Vec3::Zero();
-        Vec3 point = c + (d + (1.0 - w) * along[i]) * n + (1.0 - w) * across[i] + w * circle * radial;
-        if (options.mode == ExtensionMode::smooth && j < rings && direction[i].norm() > 0.0) {
-          const Vec3 t = direction[i].normalized();
-          const double rise = t.dot(n);
-          if (rise > 0.2) point += phi * (t / rise - n);  // a wall nearly across n keeps the straight start
+      std::vector<double> ring_at(m);
+      for (int k = 0; k < m; ++k) {
+        const double t = (k + (j % 2 == 1 ? 0.5 : 0.0)) / m;
+        ring_at[k] = t;
+        // The loop's shape at t, between its points.
+        const int i = edge_at(t), i1 = (i + 1) % m;
+        const double f = at[i + 1] > at[i] ? (t - at[i]) / (at[i + 1] - at[i]) : 0.0;
+        const Vec3 shape_across = (1.0 - f) * across[i] + f * across[i1];
+        const double shape_along = (1.0 - f) * along[i] + f * along[i1];
+        const Vec3 radial = std::cos(2.0 * std::numbers::pi * t) * eu + std::sin(2.0 * std::numbers::pi * t) * ev;
+        Vec3 point = c + (d + (1.0 - w) * shape_along) * n + (1.0 - w) * shape_across + w * circle * radial;
+        const Vec3 wall = (1.0 - f) * direction[i] + f * direction[i1];
+        if (options.mode == ExtensionMode::smooth && j < rings && wall.norm() > 0.0) {
+          const Vec3 tangent = wall.normalized();
+          const double rise = tangent.dot(n);
+          if (rise > 0.2) point += phi * (tangent / rise - n);  // a wall nearly across n keeps the straight start
         }
-        ring[i] = out.num_points();
+        ring[k] = out.num_points();
         out.points.push_back(point);
       }
-      // The band between the rings, each quad cut along its shorter diagonal, oriented as the wall.
-      for (int i = 0; i < m; ++i) {
-        const int i1 = (i + 1) % m;
-        const int a0 = previous[i], a1 = previous[i1], b0 = ring[i], b1 = ring[i1];
-        const int label = mesh.has_labels() ? mesh.labels[edge_triangle[i]] : 0;
-        const bool first = (out.points[a1] - out.points[b0]).squaredNorm() <= (out.points[a0] - out.points[b1]).squaredNorm();
-        if (first) {
-          out.triangles.push_back({a1, a0, b0});
-          out.triangles.push_back({a1, b0, b1});
-        } else {
-          out.triangles.push_back({a1, a0, b1});
-          out.triangles.push_back({a0, b0, b1});
-        }
-        if (mesh.has_labels()) out.labels.insert(out.labels.end(), 2, label);
-      }
+      band(previous, previous_at, ring, ring_at);
       previous = std::move(ring);
+      previous_at = std::move(ring_at);
     }
     ExtendedEnd x;
     x.end = e;

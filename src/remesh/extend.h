@@ -5,13 +5,15 @@
 // Input: a clean, consistently oriented surface (mesh::clean) and its ends (analysis::open_ends).
 // Each chosen open end's loop is extruded along the end's outward normal n by `length` x the end's
 // equivalent radius R, in rings about the loop's mean edge length apart (the wall's own triangle
-// size there). Ring by ring the loop's shape turns into a circle of radius R (its polygon's area
-// pi R^2, so the new end's equivalent radius is R) in the plane normal to n, over the first
-// min(length R / 2, 2 R) (a smoothstep); in `smooth` mode the tube also leaves each loop point in
+// size there), each of as many points as the loop evenly spaced along it (every other ring shifted
+// by half a spacing; the first ring zipped to the loop's own points, however uneven). Ring by ring
+// the loop's shape turns into a circle of radius R (its polygon's area pi R^2, so the new end's
+// equivalent radius is R) in the plane normal to n, over the first min(length R / 2, 2 R) (a
+// smoothstep); in `smooth` mode the tube also leaves each loop point in
 // the wall's own direction there and turns to n over the same span (a cubic that meets both, so
 // the wall has no crease where the tube begins). The last ring is the new end: planar, normal to
 // n, its centre the old centre + length R n. Each tube triangle carries the label of the wall
-// triangle on its column's loop edge. Output: the surface (old points and triangles first,
+// triangle on the loop edge at its place round the loop. Output: the surface (old points and triangles first,
 // unchanged), and per extended end where it was and where it is.
 #pragma once
 

@@ -100,7 +100,7 @@ TEST(Extend, APipesEndsMoveByTheirLengthInRadii) {
 
 // A flaring end (a cone whose radius grows 20 % a radius along it): in smooth mode the tube leaves
 // the wall in its own direction (no crease at the loop); straight, it turns there by the cone's
-// angle (measured: 1.9 and 11.3 degrees at both ends, the cone 11.3). Labels follow the wall.
+// angle (measured: 1.8-1.9 and 11.2-11.3 degrees at the two ends, the cone 11.3). Labels follow the wall.
 TEST(Extend, SmoothModeLeavesNoCrease) {
   TriMesh cone = synth::cylinder({.radius = 2.0, .length = 10.0, .resolution = 0.4});
   for (Vec3& p : cone.points) {
