@@ -226,23 +226,41 @@ TEST(Remesh, TargetCountIsReachedWithinThreePercent) {
 struct CountingEngine {
   std::function<int(double)> count;
   mutable std::vector<double> scales = {};
+  int tightened = 0;  // what the engine says the distance bound did
   RemeshResult operator()(const std::vector<Sym3>& metric) const {
     scales.push_back(metric[0].v[0]);
     RemeshResult r;
     r.stats.triangles = count(metric[0].v[0]);
+    r.stats.tightened = tightened;
     return r;
   }
 };
 
+// The log, kept.
+struct KeptLog : Reporter {
+  mutable std::string text;
+  void info(std::string_view message) const override { text += std::string(message) + "\n"; }
+};
+
 // A count a bound holds (it barely moves with the scale): two weak steps in a row end the loop,
+// the log saying which bound (issue 31),
 // the closest run kept; one weak step alone (scatter) does not.
 TEST(FitCount, EndsWhenABoundHoldsTheCount) {
   const std::vector<Sym3> identity(4, Sym3::from_matrix(Eigen::Matrix3d::Identity()));
   CountingEngine held{[](double s) { return static_cast<int>(16000.0 * std::pow(s, 0.05)); }};
-  const RemeshResult r = fit_count(std::cref(held), identity, 8000.0);
+  const KeptLog log;
+  const RemeshResult r = fit_count(std::cref(held), identity, 8000.0, log);
   EXPECT_EQ(held.scales.size(), 3u);  // the first run and two weak steps (4 corrections allowed)
   EXPECT_EQ(r.stats.triangles, held.count(held.scales.back()));
   EXPECT_LT(r.stats.triangles, 16000);
+  // Which bound, said: none acted (the mesh within the field's unit band already, as a structured
+  // pipe near its own count), or the distance bound where it tightened the metric.
+  EXPECT_NE(log.text.find("no bound acted"), std::string::npos) << log.text;
+  EXPECT_EQ(log.text.find("the distance bound"), std::string::npos) << log.text;
+  CountingEngine bounded{held.count, {}, 12};
+  const KeptLog bounded_log;
+  fit_count(std::cref(bounded), identity, 8000.0, bounded_log);
+  EXPECT_NE(bounded_log.text.find("a bound holds it (the distance bound"), std::string::npos) << bounded_log.text;
   // Weak once (scatter), then proportional again: the target is reached.
   CountingEngine scattered{[](double s) { return s > 0.8 ? 11526 : static_cast<int>(11526.0 * s / 0.8); }};
   const RemeshResult t = fit_count(std::cref(scattered), identity, 10000.0);
