@@ -347,7 +347,7 @@ PYBIND11_MODULE(vesselmesh, m) {
         remesh::ExtensionResult r;
         {
           py::gil_scoped_release release;
-          r = remesh::extend_ends(mesh, analysis::open_ends(mesh), {.length = length, .mode = remesh::ExtensionMode::smooth, .ends = {}});
+          r = remesh::extend_ends(mesh, analysis::open_ends(mesh), {.length = length});
         }
         return surface_tuple(r.mesh);
       },
@@ -386,11 +386,8 @@ PYBIND11_MODULE(vesselmesh, m) {
       "write_volume",
       [](const std::string& path, const py::dict& volume) {
         const TetMesh mesh = to_volume(volume);
-        const std::string ext = std::filesystem::path(path).extension().string();
         py::gil_scoped_release release;
-        if (ext == ".msh") io::write_msh(path, mesh);
-        else if (ext == ".vtu") io::write_vtu(path, mesh);
-        else throw InputError(fmt::format("{}: a volume is written as .msh or .vtu", path));
+        io::write_volume(path, mesh);
       },
       py::arg("path"), py::arg("volume"), "Writes a volume dict as .msh (Gmsh 4.1, for `simulate`) or .vtu.");
   m.def(

@@ -53,7 +53,7 @@ Command add_extend_command(CLI::App& parent) {
             } catch (const InputError& e) {
               throw OptionError(fmt::format("--mode: {}", e.what()));
             }
-            io::surface_format(o->output);  // an extension that cannot be written: refused before the work
+            io::check_surface_output(o->output);  // an extension that cannot be written: refused before the work
             TerminalReporter reporter(o->common.quiet);
             const CheckedSurface surface = read_surface_input(o->surface, reporter);
             const int count = static_cast<int>(surface.ends.size());

@@ -197,7 +197,7 @@ Command add_info_command(CLI::App& parent) {
             o->check.clean.keep_largest_component = !o->keep_all_components;
             o->check.clean.find_self_intersections = !o->skip_self_intersections;
             if (!o->units.empty()) o->check.units = o->units;
-            if (!o->output.empty()) io::surface_format(o->output);  // a bad extension fails before any work
+            if (!o->output.empty()) io::check_surface_output(o->output);  // a bad extension fails before any work
             TerminalReporter reporter(o->common.quiet);
             const CheckedSurface surface = check_surface(o->input, o->check, reporter);
             if (!o->output.empty()) {

@@ -156,13 +156,10 @@ Command add_remesh_command(CLI::App& parent) {
       ->capture_default_str();
   add_common_options(*app, o->common);
   return {app, [o, app] {
-            const io::SurfaceFormat format = io::surface_format(o->output);
+            io::check_surface_output(o->output);
             const bool gmsh = o->engine == "gmsh";
             if (!gmsh && app->count("--gmsh-algorithm") + app->count("--classify-angle") > 0)
               throw OptionError("--gmsh-algorithm and --classify-angle go with --engine gmsh");
-            if (format != io::SurfaceFormat::stl && format != io::SurfaceFormat::vtp && format != io::SurfaceFormat::msh &&
-                format != io::SurfaceFormat::medit)
-              throw OptionError(fmt::format("{}: the remeshed surface is written as .stl, .vtp, .msh or .mesh", o->output));
             if (o->metric.empty() == o->sizing.kind.empty())
               throw OptionError("give the size field either by --size KIND (with sizing options) or by --metric FIELD.vtp");
             TerminalReporter reporter(o->common.quiet);

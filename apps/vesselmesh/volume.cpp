@@ -17,16 +17,6 @@
 namespace vesselmesh::cli {
 namespace {
 
-enum class VolumeFormat { vtu, msh };
-
-VolumeFormat volume_format(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (extension == ".vtu") return VolumeFormat::vtu;
-  if (extension == ".msh") return VolumeFormat::msh;
-  throw OptionError(fmt::format("{}: a volume mesh is written as .vtu (VTK, with layer data) or .msh (Gmsh 4.1)", path));
-}
-
 Json quality_json(const volume::VolumeQuality& q) {
   Json tags = Json::object();
   for (const auto& [name, count] : q.triangles_per_tag) tags[name] = count;
@@ -163,7 +153,7 @@ Command add_volume_command(CLI::App& parent) {
   app->add_option("--threads", o->volume.threads, "Threads for HXT (0: all)")->check(CLI::NonNegativeNumber);
   add_common_options(*app, o->common);
   return {app, [o] {
-            const VolumeFormat format = volume_format(o->output);
+            io::check_volume_output(o->output);
             volume::VolumeOptions options = o->volume;
             options.algorithm = volume::parse_fill_algorithm(o->algorithm);
             if (!o->end_names.empty()) options.end_names = split(o->end_names, ',');
@@ -195,10 +185,7 @@ Command add_volume_command(CLI::App& parent) {
                 o->target_points > 0 ? volume::build_volume_with_points(wall, surface.ends, radius, options,
                                                                         o->target_points, 0.02, reporter)
                                      : volume::build_volume(wall, surface.ends, radius, options, reporter);
-            if (format == VolumeFormat::vtu)
-              io::write_vtu(o->output, result.mesh, {Field::scalar("radius", result.radius)});
-            else
-              io::write_msh(o->output, result.mesh);
+            io::write_volume(o->output, result.mesh, {Field::scalar("radius", result.radius)});
             const volume::VolumeQuality q = volume::measure_volume(result.mesh, result.radius);
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             const volume::VolumeReport& r = result.report;
@@ -278,7 +265,7 @@ Command add_quality_command(CLI::App& parent) {
   add_common_options(*app, o->common);
   return {app, [o] {
             TerminalReporter reporter(o->common.quiet);
-            volume_format(o->mesh);  // .msh or .vtu, else an option error
+            io::check_volume_output(o->mesh);  // .msh or .vtu, else an option error
             const TetMesh mesh = io::read_volume(o->mesh);
             const volume::VolumeQuality q = volume::measure_volume(mesh);
             if (o->common.json) {

@@ -515,8 +515,8 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   // the fluid volume too ([output] fluid_every), not only the wall.
   const auto save = [&](double time, const std::vector<Vec3>* computed, bool with_fluid) {
     const std::string name = fmt::format("{:06d}", summary.saved);
-    const std::vector<Field> fluid_fields{Field::vector("velocity", {}), Field::scalar("pressure", {})};
     if (with_fluid) {
+      const std::vector<Field> fluid_fields{Field::vector("velocity", {}), Field::scalar("pressure", {})};
       const std::string fluid_file = write_result("fluid_" + name, io::VtkFormat::vtu, fluid_fields,
                                                   [&](const std::string& path) {
         if (!pieces) {

@@ -522,25 +522,25 @@ std::string medit_text(const TetMesh& mesh, double scale) {
 
 }  // namespace
 
+namespace {
+// Each format and its name, in the order the help and the messages list them.
+constexpr std::pair<ExportFormat, const char*> kFormats[] = {
+    {ExportFormat::svfsi, "svfsi"}, {ExportFormat::openfoam, "openfoam"}, {ExportFormat::xdmf, "xdmf"},
+    {ExportFormat::fluent, "fluent"}, {ExportFormat::vtu, "vtu"},         {ExportFormat::medit, "medit"}};
+}  // namespace
+
 ExportFormat parse_export_format(const std::string& name) {
-  if (name == "svfsi") return ExportFormat::svfsi;
-  if (name == "openfoam") return ExportFormat::openfoam;
-  if (name == "vtu") return ExportFormat::vtu;
-  if (name == "medit") return ExportFormat::medit;
-  if (name == "fluent") return ExportFormat::fluent;
-  if (name == "xdmf") return ExportFormat::xdmf;
-  throw InputError(fmt::format("export format \"{}\": expected svfsi, openfoam, xdmf, fluent, vtu or medit", name));
+  std::string names;
+  for (const auto& [format, known] : kFormats) {
+    if (name == known) return format;
+    names += names.empty() ? known : std::string(", ") + known;
+  }
+  throw InputError(fmt::format("export format \"{}\": expected one of {}", name, names));
 }
 
 std::string to_string(ExportFormat format) {
-  switch (format) {
-    case ExportFormat::svfsi: return "svfsi";
-    case ExportFormat::openfoam: return "openfoam";
-    case ExportFormat::vtu: return "vtu";
-    case ExportFormat::medit: return "medit";
-    case ExportFormat::fluent: return "fluent";
-    case ExportFormat::xdmf: return "xdmf";
-  }
+  for (const auto& [known, name] : kFormats)
+    if (known == format) return name;
   return "?";
 }
 

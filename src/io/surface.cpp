@@ -87,15 +87,21 @@ SurfaceFile read_surface(const std::string& path, const ReadOptions& options, co
   return file;
 }
 
+void check_surface_output(const std::string& path) {
+  const SurfaceFormat format = surface_format(path);
+  if (format != SurfaceFormat::stl && format != SurfaceFormat::vtp && format != SurfaceFormat::msh &&
+      format != SurfaceFormat::medit)
+    throw OptionError(fmt::format("{}: cannot write this format: use .stl, .vtp, .msh or .mesh", path));
+}
+
 void write_surface(const std::string& path, const TriMesh& mesh, const std::vector<Field>& point_data,
                    const std::vector<Field>& cell_data) {
+  check_surface_output(path);
   switch (surface_format(path)) {
     case SurfaceFormat::stl: return write_stl(path, mesh);
     case SurfaceFormat::vtp: return write_vtp(path, mesh, point_data, cell_data);
     case SurfaceFormat::msh: return write_msh(path, mesh);
-    case SurfaceFormat::medit: return write_medit(path, mesh);
-    default:
-      throw OptionError(fmt::format("{}: cannot write this format: use .stl, .vtp, .msh or .mesh", path));
+    default: return write_medit(path, mesh);
   }
 }
 

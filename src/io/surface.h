@@ -39,7 +39,8 @@ SurfaceFile read_surface(const std::string& path, const ReadOptions& options = {
                          const Reporter& reporter = silent_reporter());
 
 // Writes by extension (.stl, .vtp, .msh, .mesh); fields go to VTP only. Throws OptionError for an
-// extension that cannot be written.
+// extension that cannot be written, as check_surface_output does before any work.
+void check_surface_output(const std::string& path);
 void write_surface(const std::string& path, const TriMesh& mesh,
                    const std::vector<Field>& point_data = {}, const std::vector<Field>& cell_data = {});
 

@@ -31,7 +31,7 @@ ExtensionMode parse_extension_mode(const std::string& text);  // InputError nami
 struct ExtensionOptions {
   double length = 5.0;  // in radii of each end
   ExtensionMode mode = ExtensionMode::smooth;
-  std::vector<int> ends;  // indices into the ends given (open_ends' order); empty: every open end
+  std::vector<int> ends = {};  // indices into the ends given (open_ends' order); empty: every open end
 };
 
 struct ExtendedEnd {

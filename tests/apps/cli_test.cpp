@@ -936,6 +936,11 @@ TEST(Cli, ExtendMovesTheChosenEnds) {
   EXPECT_EQ(unknown.code, 2);
   EXPECT_NE(last_line(unknown.err).find("outlet_9"), std::string::npos) << unknown.err;
   EXPECT_FALSE(std::filesystem::exists(tmp.path("z.vtp")));
+  // A format that can be read but not written: refused before any work, nothing written.
+  const RunResult ply = run({"extend", tmp.path("y.stl"), "-o", tmp.path("z.ply")});
+  EXPECT_EQ(ply.code, 2);
+  EXPECT_NE(last_line(ply.err).find("cannot write this format"), std::string::npos) << ply.err;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path("z.ply")));
   const RunResult mode = run({"extend", tmp.path("y.stl"), "-o", tmp.path("z.vtp"), "--mode", "curved"});
   EXPECT_EQ(mode.code, 2);
   EXPECT_NE(last_line(mode.err).find("straight or smooth"), std::string::npos) << mode.err;

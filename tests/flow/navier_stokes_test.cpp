@@ -42,6 +42,18 @@ TetMesh pipe_volume(double radius, double length, double resolution, bool layer 
   return volume::build_volume(pipe, ends, std::vector<double>(pipe.points.size(), radius), options).mesh;
 }
 
+// A 180-degree bend (radius R mm, bend radius 6 mm, 8 mm straight before and after, 0.6 mm
+// triangles) with two layers, its inlet the first end: the steady tests' convective case.
+TetMesh bend_volume(double R) {
+  const TriMesh bend = synth::bend({.radius = R, .bend_radius = 6.0, .angle_deg = 180.0, .inlet_length = 8.0,
+                                    .outlet_length = 8.0, .resolution = 0.6});
+  volume::VolumeOptions options;
+  options.layer.layers = 2;
+  options.inlet = 0;
+  return volume::build_volume(bend, analysis::open_ends(bend), std::vector<double>(bend.points.size(), R), options)
+      .mesh;
+}
+
 // A pipe case: `time` is the [time] table's body, `inflow` the inlet's profile and flow keys.
 FlowCase pipe_case(const std::string& time, const std::string& inflow, const std::string& path) {
   return parse_case(fmt::format(R"(
@@ -200,13 +212,7 @@ TEST(NavierStokes, PoiseuilleInAnExtendedPipeAsInAnEquallyLongOne) {
 // 1e-10, changes nothing) and is under 1e-4 from dt = 0.1 s.
 TEST(NavierStokes, SteadyFlowIsWhereALongUnsteadyRunSettles) {
   const double R = 2.0, Q = 2.0;
-  const TriMesh bend = synth::bend({.radius = R, .bend_radius = 6.0, .angle_deg = 180.0, .inlet_length = 8.0,
-                                    .outlet_length = 8.0, .resolution = 0.6});
-  volume::VolumeOptions options;
-  options.layer.layers = 2;
-  options.inlet = 0;
-  const TetMesh mesh =
-      volume::build_volume(bend, analysis::open_ends(bend), std::vector<double>(bend.points.size(), R), options).mesh;
+  const TetMesh mesh = bend_volume(R);
   const std::string inflow = fmt::format("profile = \"parabolic\"\nflow = {}", Q);
   NavierStokes steady(mesh, pipe_case("steady = true\nsteady_tolerance = 1e-10\nsteady_iterations = 80\n"
                                       "steady_method = \"newton\"",
@@ -476,13 +482,7 @@ TEST(NavierStokes, PseudoTransientSteadyReachesPicardsFlow) {
 // pipe, where (u . grad) u nearly vanishes, they take as many.)
 TEST(NavierStokes, NewtonSteadyReachesPicardsFlowInFewerIterations) {
   const double R = 2.0, Q = 2.0;
-  const TriMesh bend = synth::bend({.radius = R, .bend_radius = 6.0, .angle_deg = 180.0, .inlet_length = 8.0,
-                                    .outlet_length = 8.0, .resolution = 0.6});
-  volume::VolumeOptions options;
-  options.layer.layers = 2;
-  options.inlet = 0;
-  const TetMesh mesh =
-      volume::build_volume(bend, analysis::open_ends(bend), std::vector<double>(bend.points.size(), R), options).mesh;
+  const TetMesh mesh = bend_volume(R);
   const std::string inflow = fmt::format("profile = \"parabolic\"\nflow = {}", Q);
   const std::string tight = "steady = true\nsteady_tolerance = 1e-8\nsteady_iterations = 80";
   NavierStokes picard(mesh, pipe_case(tight, inflow, "picard.toml"));

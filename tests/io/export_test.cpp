@@ -131,6 +131,9 @@ TEST(Export, SvfsiRefusesPrisms) {
     EXPECT_NE(std::string(e.what()).find("--keep-prisms"), std::string::npos) << e.what();
   }
   EXPECT_THROW(parse_export_format("openfoam2"), InputError);
+  for (ExportFormat f : {ExportFormat::svfsi, ExportFormat::openfoam, ExportFormat::xdmf, ExportFormat::fluent,
+                         ExportFormat::vtu, ExportFormat::medit})
+    EXPECT_EQ(parse_export_format(to_string(f)), f) << to_string(f);
   // A file where the output folder would be: an InputError naming it, nothing written.
   write_text(tmp.path("taken"), "x");
   EXPECT_THROW(export_volume(pipe(), tmp.path("taken"), ExportFormat::openfoam, 1e-3), InputError);

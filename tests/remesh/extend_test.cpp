@@ -148,6 +148,7 @@ TEST(Extend, RefusesCappedEndsAndNonPositiveLengths) {
 // Every open end of the shared vessels (inward-oriented files, three units): the doctor finds
 // nothing to mend, the ends move by five radii and keep their radii.
 struct Vessel {
+  const char* name;
   const char* file;
   const char* units;
 };
@@ -164,12 +165,10 @@ TEST_P(ExtendVessel, EveryEndExtended) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Shared, ExtendVessel,
-                         ::testing::Values(Vessel{"vmtk_aorta_iliac_bifurcation_open_mm.stl", "mm"},
-                                           Vessel{"gmsh_aortic_arch_open_cm.stl", "cm"},
-                                           Vessel{"gmsh_carotid_bifurcation_open_m.stl", "m"}),
-                         [](const auto& info) { return std::string(info.param.units) == "mm" ? std::string("aorta")
-                                                       : std::string(info.param.units) == "cm" ? std::string("arch")
-                                                                                               : std::string("carotid"); });
+                         ::testing::Values(Vessel{"aorta", "vmtk_aorta_iliac_bifurcation_open_mm.stl", "mm"},
+                                           Vessel{"arch", "gmsh_aortic_arch_open_cm.stl", "cm"},
+                                           Vessel{"carotid", "gmsh_carotid_bifurcation_open_m.stl", "m"}),
+                         [](const auto& param_info) { return std::string(param_info.param.name); });
 
 }  // namespace
 }  // namespace vesselmesh::remesh
