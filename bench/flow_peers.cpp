@@ -1,6 +1,6 @@
-// The flow solver's peers on one pipe (bench/flow_peers.sh drives it): converts the pipe's fields
-// and meshes to the peers' formats and reads their results back, so that the script compares
-// like with like.
+// The flow solver's peers on one pipe (bench/flow_peers.sh drives it): writes the pipe's
+// Poiseuille flow into the peers' initial conditions (their meshes come from `vesselmesh export`)
+// and reads their results back, so that the script compares like with like.
 //
 //   bench_flow_peers openfoam-fields CASE RADIUS_M FLOW_M3S
 //       Writes CASE/0/U and CASE/0/p from the cell and face centres in CASE/0/C (postProcess
@@ -16,25 +16,20 @@
 //       holds the setup), and the mean pressure iterations per step.
 //   bench_flow_peers vesselmesh-wss RESULT_DIR Z0_MM Z1_MM
 //       The last saved wall frame's nodal WSS magnitude at the wall points with Z0 <= z <= Z1.
-//   bench_flow_peers svfsi-mesh VOLUME.vtu DIR SCALE RADIUS_M FLOW_M3S
-//       svFSIplus's mesh, in metres (the points times SCALE): DIR/mesh-complete.mesh.vtu
-//       (tetrahedra, GlobalNodeID, GlobalElementID, and the Poiseuille flow as the point array
-//       Velocity, for <Initial_velocities_file_path>) and DIR/mesh-surfaces/NAME.vtp per boundary
-//       tag (GlobalNodeID, GlobalElementID of the tetrahedron under each triangle), from a
-//       tetrahedral VTU written by `vesselmesh volume`.
+//   bench_flow_peers svfsi-initial MESH.vtu OUT.vtu RADIUS_M FLOW_M3S
+//       The Poiseuille flow at the points of svMultiPhysics's mesh (mesh-complete.mesh.vtu, in
+//       metres, as `vesselmesh export --format svfsi --units m` wrote it): OUT.vtu, the same mesh
+//       with the point array Velocity, for <Initial_velocities_file_path>; prints `nodes`.
 //   bench_flow_peers svfsi-steps LOG
-//       Seconds per step from svFSIplus's "NS <step>-<iteration> <seconds>" lines (the first step
-//       left out), Newton and linear iterations per step.
+//       Seconds per step from svMultiPhysics's "NS <step>-<iteration> <seconds>" lines (the first
+//       step left out), Newton and linear iterations per step.
 //   bench_flow_peers svfsi-wss RESULT.vtu WALL.vtp Z0_M Z1_M
-//       The WSS point array of an svFSIplus result at the points of its wall face (WALL.vtp, as
-//       svfsi-mesh wrote it) with Z0 <= z <= Z1.
+//       The WSS point array of an svMultiPhysics result at the points of its wall face (WALL.vtp,
+//       as the export wrote it: GlobalNodeID) with Z0 <= z <= Z1.
 // Each prints `key value` lines for the script; a bad argument or file: a message, exit 2.
-#include "io/vtk_formats.h"
-#include "mesh/tetmesh.h"
 #include "post/wall_series.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -47,18 +42,13 @@
 #include <string>
 #include <vector>
 
-#include <vtkCellArray.h>
-#include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
-#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLPolyDataReader.h>
-#include <vtkXMLPolyDataWriter.h>
 #include <vtkXMLUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
@@ -137,22 +127,26 @@ void write_vectors(std::ostream& out, const std::vector<Vec3>& v) {
   out << ")";
 }
 
+// The Poiseuille flow of FLOW (m3/s) in a pipe of radius RADIUS (m) along +z, at `x` (m):
+// u = 2Q/A (1 - r^2/R^2), zero outside R.
+Vec3 poiseuille(const Vec3& x, double radius, double flow) {
+  const double peak = 2.0 * flow / (std::numbers::pi * radius * radius);
+  const double r2 = x.x() * x.x() + x.y() * x.y();
+  return Vec3(0, 0, std::max(0.0, peak * (1.0 - r2 / (radius * radius))));
+}
+
 int openfoam_fields(const fs::path& dir, double radius, double flow) {
   const std::string c = read_text(dir / "0" / "C");
-  const double peak = 2.0 * flow / (std::numbers::pi * radius * radius);
-  auto poiseuille = [&](const std::vector<Vec3>& centres) {
+  auto poiseuille_at = [&](const std::vector<Vec3>& centres) {
     std::vector<Vec3> u(centres.size());
-    for (std::size_t i = 0; i < u.size(); ++i) {
-      const double r2 = centres[i].x() * centres[i].x() + centres[i].y() * centres[i].y();
-      u[i] = Vec3(0, 0, std::max(0.0, peak * (1.0 - r2 / (radius * radius))));
-    }
+    for (std::size_t i = 0; i < u.size(); ++i) u[i] = poiseuille(centres[i], radius, flow);
     return u;
   };
   std::ofstream u(dir / "0" / "U");
   u << header("volVectorField", "U") << "dimensions [0 1 -1 0 0 0 0];\ninternalField ";
-  write_vectors(u, poiseuille(internal_vectors(c, "0/C")));
+  write_vectors(u, poiseuille_at(internal_vectors(c, "0/C")));
   u << ";\nboundaryField\n{\n    inlet\n    {\n        type fixedValue;\n        value ";
-  write_vectors(u, poiseuille(patch_vectors(c, "inlet", "0/C")));
+  write_vectors(u, poiseuille_at(patch_vectors(c, "inlet", "0/C")));
   u << ";\n    }\n    outlet_1\n    {\n        type pressureInletOutletVelocity;\n        value uniform (0 0 0);\n"
        "    }\n    wall\n    {\n        type noSlip;\n    }\n}\n";
   std::ofstream p(dir / "0" / "p");
@@ -162,7 +156,7 @@ int openfoam_fields(const fs::path& dir, double radius, double flow) {
        "    outlet_1\n    {\n        type fixedValue;\n        value uniform 0;\n    }\n"
        "    wall\n    {\n        type zeroGradient;\n    }\n}\n";
   if (!u || !p) throw std::runtime_error("cannot write the fields in " + (dir / "0").string());
-  std::printf("peak_velocity_m_s %.6g\n", peak);
+  std::printf("peak_velocity_m_s %.6g\n", poiseuille(Vec3::Zero(), radius, flow).z());
   return 0;
 }
 
@@ -231,107 +225,32 @@ int vesselmesh_wss(const std::string& results, double z0, double z1) {
   return 0;
 }
 
-// ---- svFSIplus's mesh-complete format ----
+// ---- svMultiPhysics ----
 
-vtkNew<vtkIntArray> int_array(const char* name, const std::vector<int>& values) {
-  vtkNew<vtkIntArray> array;
-  array->SetName(name);
-  array->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
-  for (std::size_t i = 0; i < values.size(); ++i) array->SetValue(static_cast<vtkIdType>(i), values[i]);
-  return array;
-}
-
-template <class Writer, class Data>
-void write_xml(const std::string& path, Data* data) {
-  vtkNew<Writer> writer;
-  writer->SetFileName(path.c_str());
-  writer->SetInputData(data);
-  writer->SetDataModeToBinary();
-  if (writer->Write() != 1) throw std::runtime_error("cannot write " + path);
-}
-
-int svfsi_mesh(const std::string& volume, const std::string& directory, double scale, double radius, double flow) {
-  const vesselmesh::TetMesh mesh = vesselmesh::io::read_vtu_volume(volume);
-  if (mesh.num_prisms() != 0) throw std::runtime_error(volume + " has prisms: svFSIplus takes one element type");
-  fs::create_directories(fs::path(directory) / "mesh-surfaces");
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  // Faces are matched to the volume by their points' coordinates: both written from the same
-  // products.
-  auto metres = [&](const Vec3& p) -> Vec3 { return p * scale; };
-  const double peak = 2.0 * flow / (std::numbers::pi * radius * radius);
+int svfsi_initial(const std::string& mesh, const std::string& out, double radius, double flow) {
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  reader->SetFileName(mesh.c_str());
+  reader->Update();
+  vtkUnstructuredGrid* grid = reader->GetOutput();
+  if (grid == nullptr || grid->GetNumberOfPoints() == 0)
+    throw std::runtime_error("cannot read a mesh from " + mesh);
   vtkNew<vtkDoubleArray> velocity;
   velocity->SetName("Velocity");
   velocity->SetNumberOfComponents(3);
-  for (const Vec3& p : mesh.points) {
-    const Vec3 x = metres(p);
-    points->InsertNextPoint(x.x(), x.y(), x.z());
-    const double r2 = x.x() * x.x() + x.y() * x.y();
-    velocity->InsertNextTuple3(0, 0, std::max(0.0, peak * (1.0 - r2 / (radius * radius))));
+  velocity->SetNumberOfTuples(grid->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i) {
+    double x[3];
+    grid->GetPoint(i, x);
+    const Vec3 u = poiseuille(Vec3(x[0], x[1], x[2]), radius, flow);
+    velocity->SetTuple3(i, u.x(), u.y(), u.z());
   }
-  std::vector<int> node_ids(mesh.points.size());
-  for (std::size_t i = 0; i < node_ids.size(); ++i) node_ids[i] = static_cast<int>(i) + 1;
-
-  vtkNew<vtkUnstructuredGrid> grid;
-  grid->SetPoints(points);
-  std::map<std::array<int, 3>, int> tet_of_face;  // sorted face -> 1-based tetrahedron
-  std::vector<int> element_ids(mesh.tets.size());
-  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-    const vesselmesh::Tet& tet = mesh.tets[t];
-    const vtkIdType ids[4] = {tet[0], tet[1], tet[2], tet[3]};
-    grid->InsertNextCell(10 /* VTK_TETRA */, 4, ids);
-    element_ids[t] = static_cast<int>(t) + 1;
-    for (int skip = 0; skip < 4; ++skip) {
-      std::array<int, 3> face{};
-      for (int k = 0, n = 0; k < 4; ++k)
-        if (k != skip) face[n++] = tet[k];
-      std::sort(face.begin(), face.end());
-      tet_of_face[face] = static_cast<int>(t) + 1;
-    }
-  }
-  grid->GetPointData()->AddArray(int_array("GlobalNodeID", node_ids));
-  grid->GetCellData()->AddArray(int_array("GlobalElementID", element_ids));
   grid->GetPointData()->AddArray(velocity);
-  write_xml<vtkXMLUnstructuredGridWriter>((fs::path(directory) / "mesh-complete.mesh.vtu").string(), grid.Get());
-
-  std::map<int, std::vector<int>> triangles_of_tag;
-  for (std::size_t f = 0; f < mesh.boundary.size(); ++f) triangles_of_tag[mesh.boundary_tags[f]].push_back(static_cast<int>(f));
-  for (const auto& [tag, triangles] : triangles_of_tag) {
-    const auto named = mesh.tag_names.find(tag);
-    const std::string name = named != mesh.tag_names.end() ? named->second : "tag_" + std::to_string(tag);
-    std::map<int, int> local;  // global point -> face point
-    vtkNew<vtkPoints> face_points;
-    face_points->SetDataTypeToDouble();
-    std::vector<int> face_node_ids, face_element_ids;
-    vtkNew<vtkCellArray> cells;
-    for (int f : triangles) {
-      vtkIdType ids[3];
-      for (int k = 0; k < 3; ++k) {
-        const int g = mesh.boundary[f][k];
-        auto [it, inserted] = local.emplace(g, static_cast<int>(local.size()));
-        if (inserted) {
-          const Vec3 x = metres(mesh.points[g]);
-          face_points->InsertNextPoint(x.x(), x.y(), x.z());
-          face_node_ids.push_back(g + 1);
-        }
-        ids[k] = it->second;
-      }
-      cells->InsertNextCell(3, ids);
-      std::array<int, 3> key = mesh.boundary[f];
-      std::sort(key.begin(), key.end());
-      const auto owner = tet_of_face.find(key);
-      if (owner == tet_of_face.end()) throw std::runtime_error("boundary triangle " + std::to_string(f) + " has no tetrahedron");
-      face_element_ids.push_back(owner->second);
-    }
-    vtkNew<vtkPolyData> face;
-    face->SetPoints(face_points);
-    face->SetPolys(cells);
-    face->GetPointData()->AddArray(int_array("GlobalNodeID", face_node_ids));
-    face->GetCellData()->AddArray(int_array("GlobalElementID", face_element_ids));
-    write_xml<vtkXMLPolyDataWriter>((fs::path(directory) / "mesh-surfaces" / (name + ".vtp")).string(), face.Get());
-    std::printf("face %s %zu\n", name.c_str(), triangles.size());
-  }
-  std::printf("nodes %zu\ntetrahedra %zu\n", mesh.points.size(), mesh.tets.size());
+  vtkNew<vtkXMLUnstructuredGridWriter> writer;
+  writer->SetFileName(out.c_str());
+  writer->SetInputData(grid);
+  writer->SetDataModeToBinary();
+  if (writer->Write() != 1) throw std::runtime_error("cannot write " + out);
+  std::printf("nodes %lld\n", static_cast<long long>(grid->GetNumberOfPoints()));
   return 0;
 }
 
@@ -407,8 +326,8 @@ int main(int argc, char** argv) {
       return openfoam_wss(a[1], a[2], std::stod(a[3]), std::stod(a[4]), std::stod(a[5]));
     if (a.size() == 2 && a[0] == "openfoam-steps") return openfoam_steps(a[1]);
     if (a.size() == 4 && a[0] == "vesselmesh-wss") return vesselmesh_wss(a[1], std::stod(a[2]), std::stod(a[3]));
-    if (a.size() == 6 && a[0] == "svfsi-mesh")
-      return svfsi_mesh(a[1], a[2], std::stod(a[3]), std::stod(a[4]), std::stod(a[5]));
+    if (a.size() == 5 && a[0] == "svfsi-initial")
+      return svfsi_initial(a[1], a[2], std::stod(a[3]), std::stod(a[4]));
     if (a.size() == 2 && a[0] == "svfsi-steps") return svfsi_steps(a[1]);
     if (a.size() == 5 && a[0] == "svfsi-wss") return svfsi_wss(a[1], a[2], std::stod(a[3]), std::stod(a[4]));
     std::fprintf(stderr, "usage: see the comment at the top of bench/flow_peers.cpp\n");

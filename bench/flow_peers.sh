@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # The flow solver against its peers on one pipe with a boundary layer (issue 8's benchmark):
 # vesselmesh simulate, OpenFOAM's pimpleFoam (Debian's `openfoam`) and, when its binary is given,
-# svFSIplus, on the same mesh, with the same time step, steps and cores.
+# svMultiPhysics (svFSIplus before its rename), on the same mesh, with the same time step, steps
+# and cores.
 #   bench/flow_peers.sh [BUILD] [OUT] [RESOLUTION_MM=0.25] [STEPS=30]
-#   SVFSI=/path/to/svFSIplus bench/flow_peers.sh ...   (built outside the project; optional)
+#   SVFSI=/path/to/svmultiphysics bench/flow_peers.sh ...   (svFSIplus in older versions; built
+#     outside the project; optional)
 #   NP=2 (default): the processes of the parallel runs (0: none)
 # The pipe: radius 2 mm, length 20 mm (vesselmesh synth cylinder), `vesselmesh volume` with 4
 # layers (total 0.1 R); steady inflow 1 mL/s (Re 96), dt 1 ms, every solver started from the
@@ -11,10 +13,10 @@
 # field written into their initial conditions), so the wall shear stress after STEPS steps is
 # compared with Poiseuille's 4 mu Q / (pi R^3) on the middle half of the pipe. R is the radius of
 # the meshed pipe's cross-section (from its volume: the polygonal pipe is a little narrower).
-# Meshes: ours and svFSIplus take the tetrahedra (each prism cut in three); pimpleFoam runs (its
-# constant/polyMesh from `vesselmesh export --format openfoam`) on
-# the layer's prisms (the same points; its WSS on pure tetrahedra is far worse) and, for the
-# same-mesh figure, on the tetrahedra too.
+# Meshes: ours and svMultiPhysics take the tetrahedra (each prism cut in three; its mesh-complete/
+# from `vesselmesh export --format svfsi --units m`); pimpleFoam runs (its constant/polyMesh from
+# `vesselmesh export --format openfoam`) on the layer's prisms (the same points; its WSS on pure
+# tetrahedra is far worse) and, for the same-mesh figure, on the tetrahedra too.
 # Printed: DOFs (4 per node for the FE codes, 4 per cell for FV), seconds per step (the first
 # step, which holds the setup, left out), seconds per step per million DOFs, linear iterations,
 # peak memory, WSS error.
@@ -181,16 +183,18 @@ for mesh in $openfoam_meshes; do
 done
 
 if [[ -n ${SVFSI:-} ]]; then
-  echo "== svFSIplus ($SVFSI)"
+  echo "== svMultiPhysics ($SVFSI)"
   dir="$out/svfsi"
   rm -rf "$dir"
-  mkdir -p "$dir"
-  "$tool" svfsi-mesh "$out/pipe.vtu" "$dir/mesh" 0.001 "$(python3 -c "print($radius * 1e-3)")" \
-    "$(python3 -c "print($flow_ml * 1e-6)")" >"$dir/mesh.txt"
+  # The mesh from our own export (mesh-complete/ in metres, a face per boundary tag: inlet,
+  # outlet_1, wall); its solver.xml skeleton replaced below by the benchmark's own settings.
+  "$vm" export "$out/pipe.vtu" -o "$dir" --format svfsi --units m -q
+  "$tool" svfsi-initial "$dir/mesh-complete/mesh-complete.mesh.vtu" "$dir/initial.vtu" \
+    "$(python3 -c "print($radius * 1e-3)")" "$(python3 -c "print($flow_ml * 1e-6)")" >"$dir/mesh.txt"
   faces=""
-  for face in "$dir"/mesh/mesh-surfaces/*.vtp; do
+  for face in "$dir"/mesh-complete/mesh-surfaces/*.vtp; do
     name=$(basename "$face" .vtp)
-    faces+="  <Add_face name=\"$name\"> <Face_file_path> mesh/mesh-surfaces/$name.vtp </Face_file_path> </Add_face>
+    faces+="  <Add_face name=\"$name\"> <Face_file_path> mesh-complete/mesh-surfaces/$name.vtp </Face_file_path> </Add_face>
 "
   done
   # Its own pipe test's settings (tests/cases/fluid/pipe_RCR_3d: 3 to 5 Newton iterations a
@@ -215,8 +219,8 @@ if [[ -n ${SVFSI:-} ]]; then
   <Debug> false </Debug>
 </GeneralSimulationParameters>
 <Add_mesh name="fluid">
-  <Mesh_file_path> mesh/mesh-complete.mesh.vtu </Mesh_file_path>
-$faces  <Initial_velocities_file_path> mesh/mesh-complete.mesh.vtu </Initial_velocities_file_path>
+  <Mesh_file_path> mesh-complete/mesh-complete.mesh.vtu </Mesh_file_path>
+$faces  <Initial_velocities_file_path> initial.vtu </Initial_velocities_file_path>
 </Add_mesh>
 <Add_equation type="fluid">
   <Coupled> true </Coupled>
@@ -259,7 +263,7 @@ EOF
   }
   svfsi_run np1 1
   result=$(ls "$dir"/1-procs/result_*.vtu | tail -1)
-  "$tool" svfsi-wss "$result" "$dir/mesh/mesh-surfaces/wall.vtp" "$(python3 -c "print($z0 * 1e-3)")" "$(python3 -c "print($z1 * 1e-3)")" >>"$dir/np1.txt"
+  "$tool" svfsi-wss "$result" "$dir/mesh-complete/mesh-surfaces/wall.vtp" "$(python3 -c "print($z0 * 1e-3)")" "$(python3 -c "print($z1 * 1e-3)")" >>"$dir/np1.txt"
   [[ $np -gt 1 ]] && svfsi_run np$np "$np"
 fi
 
@@ -279,7 +283,7 @@ def read(path):
 solvers = [("vesselmesh (tets)", f"{out}/ours_np", "dofs", 1),
            ("pimpleFoam (prism layer)", f"{out}/openfoam_prisms/np", "cells", 4),
            ("pimpleFoam (same tets)", f"{out}/openfoam_tets/np", "cells", 4),
-           ("svFSIplus (same tets)", f"{out}/svfsi/np", "dofs", 1)]
+           ("svMultiPhysics (same tets)", f"{out}/svfsi/np", "dofs", 1)]
 print(f"{'solver':26} {'DOFs':>8} {'s/step':>8} {'s/step/MDOF':>11} {'its/step':>8} {'MB':>6} {'WSS Pa':>8} "
       f"{'error':>7} {'rms err':>7} {f'np {np} s/step':>11} {'speedup':>7}")
 ours = read(f"{out}/ours_np1.txt")
