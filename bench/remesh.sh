@@ -4,6 +4,10 @@
 # input, absolute and over the local radius of the distance map), for the isotropic curvature
 # field and the anisotropic one.
 #   MMGS=/path/to/mmgs bench/remesh.sh [BUILD] [SURFACE] [UNITS] [TARGET_TRIANGLES]
+#   REMESH_ARGS="--keep-facets" bench/remesh.sh ...: extra options of ours (e.g. the points on the
+#   input's triangles, as before the smooth surface of issue 31)
+# Distances: to the smooth surface the input's triangles stand for (Phong, what ours bounds) and to
+# the triangles themselves.
 # Defaults: build, the Gmsh aortic arch of ../shared (cm), 17000 triangles. Times: the best of three
 # runs of each, pinned to one core.
 # The peer is MMG's mmgs (github.com/MmgTools/mmg, built outside this project) when MMGS names
@@ -59,7 +63,8 @@ hausd = 0.02 * radius_median()
 rows = []
 for kind in ("curvature", "anisotropic"):
     ours = f"{work}/ours_{kind}.vtp"
-    t = timed([vm, "remesh", surface, "--units", units, "--metric", f"{work}/field_{kind}.vtp", "-o", ours, "-q"])
+    t = timed([vm, "remesh", surface, "--units", units, "--metric", f"{work}/field_{kind}.vtp", "-o", ours, "-q"]
+              + os.environ.get("REMESH_ARGS", "").split())
     rows.append((kind, "vesselmesh", t, figures(kind, ours)))
     if mmgs:
         out = f"{work}/mmgs_{kind}.mesh"
@@ -75,7 +80,8 @@ print(f"{os.path.basename(surface)} ({units}); peer -hausd {hausd:.4g} mm; wall 
 for kind, tool, t, f in rows:
     print(f"  {kind:12s} {tool:11s} {t:7.2f} s  {f['triangles']:7d} triangles  unit edges {f['edges_in_unit_range']:.3f}"
           f"  min angle {f['min_angle_deg']:5.1f}  quality mean {f['mean_quality']:.3f} worst {f['min_quality']:.3f}"
-          f"  Hausdorff {f['hausdorff']:.4f} mm ({100 * f['hausdorff_relative']:.2f} % of r)")
+          f"  Hausdorff {f['hausdorff']:.4f} mm ({100 * f['hausdorff_relative']:.2f} % of r;"
+          f" to the input's triangles {100 * f['hausdorff_facets_relative']:.2f} %)")
 for kind in ("curvature", "anisotropic"):
     ours = next(r for r in rows if r[0] == kind and r[1] == "vesselmesh")
     for r in rows:

@@ -44,9 +44,10 @@ int main(int argc, char** argv) {
     const remesh::RemeshStats s = remesh::measure(output.mesh, at_output, model, &radius);
     std::printf(
         "{\"points\": %d, \"triangles\": %d, \"edges_in_unit_range\": %.4f, \"min_angle_deg\": %.3f, "
-        "\"mean_quality\": %.4f, \"min_quality\": %.4f, \"hausdorff\": %.5g, \"hausdorff_relative\": %.5g}\n",
+        "\"mean_quality\": %.4f, \"min_quality\": %.4f, \"hausdorff\": %.5g, \"hausdorff_relative\": %.5g, "
+        "\"hausdorff_facets\": %.5g, \"hausdorff_facets_relative\": %.5g}\n",
         s.points, s.triangles, s.edges_in_unit_range, s.min_angle_deg, s.mean_quality, s.min_quality, s.hausdorff,
-        s.hausdorff_relative);
+        s.hausdorff_relative, s.hausdorff_facets, s.hausdorff_facets_relative);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_remesh_measure: %s\n", e.what());
     return 2;

@@ -81,6 +81,9 @@ Json remesh_json(const remesh::RemeshStats& s) {
           {"min_quality", round_to(s.min_quality, 4)},
           {"hausdorff", round_to(s.hausdorff, 4)},
           {"hausdorff_relative", s.hausdorff_relative >= 0.0 ? Json(round_to(s.hausdorff_relative, 4)) : Json(nullptr)},
+          {"hausdorff_facets", round_to(s.hausdorff_facets, 4)},
+          {"hausdorff_facets_relative",
+           s.hausdorff_facets_relative >= 0.0 ? Json(round_to(s.hausdorff_facets_relative, 4)) : Json(nullptr)},
           {"seconds", round_to(s.seconds, 4)},
           {"operations",
            {{"splits", s.splits},
@@ -106,7 +109,10 @@ Command add_remesh_command(CLI::App& parent) {
       "Adapts the surface to a size field by local operations in the metric (split, collapse, flip, move; as MMG's "
       "mmgs): edges of unit metric length, well-shaped triangles, every point on the input. Open ends, creases and label "
       "borders are kept as feature lines; labels follow their triangles. The distance from the input stays below "
-      "--hausdorff (mm) and --hausdorff-relative times the local vessel radius. --engine gmsh takes the seed paper's "
+      "--hausdorff (mm) and --hausdorff-relative times the local vessel radius, measured against the smooth surface the input's "
+      "triangles stand for (Phong tessellation through the input's points and normals: on a coarse, faceted "
+      "segmentation the output follows the vessel, not its facets; --keep-facets: against the triangles themselves, as "
+      "mmgs); --json gives both distances (hausdorff, hausdorff_facets). --engine gmsh takes the seed paper's "
       "route instead: Gmsh cuts the surface into patches it can flatten, meshes each in its plane to the same field and "
       "maps it back");
   struct Options {
@@ -133,6 +139,10 @@ Command add_remesh_command(CLI::App& parent) {
                   "Largest distance from the input over the local radius (the distance map's, else 1/max|k|; 0: none)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  app->add_flag_function(
+      "--keep-facets", [o](std::int64_t) { o->remesh.reconstruction = remesh::Reconstruction::facets; },
+      "Put the points on the input's triangles and bound the distance to them (as mmgs), instead of the smooth surface "
+      "they stand for: a coarse input's facets are then reproduced to within the bound, at a cost in triangles");
   app->add_option("--feature-angle", o->remesh.features.feature_angle_deg,
                   "Dihedral angle (degrees) above which an edge is a crease kept as a feature line")
       ->check(CLI::Range(0.0, 180.0))
@@ -244,8 +254,13 @@ Command add_remesh_command(CLI::App& parent) {
               json["output"] = o->output;
               json["units"] = "mm";
               json["size"] = sized ? Json(sizing::size_kind_name(sized->field.kind)) : Json("metric file");
-              if (target > 0.0) json["target_triangles"] = std::lround(target);
+              if (target > 0.0) {
+                json["target_triangles"] = std::lround(target);
+                json["count_note"] = result.count_note.empty() ? Json(nullptr) : Json(result.count_note);
+              }
               json["engine"] = o->engine;
+              json["distance_to"] = gmsh || options.reconstruction == remesh::Reconstruction::facets ? "input triangles"
+                                                                                                    : "smooth surface";
               if (gmsh) {
                 json["gmsh_algorithm"] = o->gmsh_algorithm;
                 json["patches"] = patches;

@@ -32,7 +32,8 @@ const double kFlipBendCos = std::cos(20.0 * std::numbers::pi / 180.0);
 class Remesher {
  public:
   Remesher(SurfaceModel& model, const RemeshOptions& options, std::vector<double> bound)
-      : model_(model), m_(model), o_(options), bound_(std::move(bound)) {}
+      : model_(model), m_(model), o_(options), bound_(std::move(bound)),
+        tightened_(model.input().points.size(), 1.0) {}
 
   void run(const Reporter& reporter);
   DynamicMesh& mesh() { return m_; }
@@ -86,6 +87,7 @@ class Remesher {
   DynamicMesh m_;
   const RemeshOptions& o_;
   std::vector<double> bound_;  // per input point: the largest distance allowed there (inf: none)
+  std::vector<double> tightened_;  // per input point: the factor tighten_metric put on its metric
   bool keep_bound_ = false;
   // Triangles found within the distance bound by the last scan and unchanged since (a corner
   // moved or re-cornered clears the flag; new triangles have none): later scans skip them.
@@ -492,7 +494,11 @@ int Remesher::tighten_metric() {
   }
   if (count == 0) return 0;
   for (size_t v = 0; v < factor.size(); ++v)
-    if (factor[v] > 1.0) model_.refine_metric(static_cast<int>(v), factor[v]);
+    if (factor[v] > 1.0) {
+      model_.refine_metric(static_cast<int>(v), factor[v]);
+      tightened_[v] *= factor[v];
+      counts.bound_peak.raise(static_cast<int>(v), tightened_[v]);
+    }
   // Only the points whose metric changed take it anew. A free point lies on its hint triangle
   // (every projection leaves it there), so its metric interpolates that triangle's corners and
   // changes only where one of them was refined; a corner is an input point; curve points are
@@ -578,17 +584,24 @@ RemeshStats measure(const TriMesh& mesh, const std::vector<Sym3>& metric, const 
     const int hint = hints ? (*hints)[f[0]] : -1;
     const Vec3 centroid = (a + b + c) / 3.0;
     const SurfaceModel::Nearest below = model.nearest(centroid, hint);  // its triangle: the local radius
-    double d = (below.point - centroid).norm();
-    for (const Vec3& p : {Vec3(0.5 * (a + b)), Vec3(0.5 * (b + c)), Vec3(0.5 * (c + a))})
+    double d = (below.point - centroid).norm(), d_facets = model.facet_distance(centroid, hint);
+    for (const Vec3& p : {Vec3(0.5 * (a + b)), Vec3(0.5 * (b + c)), Vec3(0.5 * (c + a))}) {
       d = std::max(d, model.distance(p, hint));
+      d_facets = std::max(d_facets, model.facet_distance(p, hint));
+    }
     s.hausdorff = std::max(s.hausdorff, d);
+    s.hausdorff_facets = std::max(s.hausdorff_facets, d_facets);
     if (input_radius) {
       const Triangle& g = in.triangles[below.triangle];
       const double r = ((*input_radius)[g[0]] + (*input_radius)[g[1]] + (*input_radius)[g[2]]) / 3.0;
-      if (r > 0.0) s.hausdorff_relative = std::max(s.hausdorff_relative, d / r);
+      if (r > 0.0) {
+        s.hausdorff_relative = std::max(s.hausdorff_relative, d / r);
+        s.hausdorff_facets_relative = std::max(s.hausdorff_facets_relative, d_facets / r);
+      }
     }
   }
   if (input_radius && s.hausdorff_relative < 0.0) s.hausdorff_relative = 0.0;
+  if (input_radius && s.hausdorff_facets_relative < 0.0) s.hausdorff_facets_relative = 0.0;
   s.mean_quality = mesh.num_triangles() ? quality_sum / mesh.num_triangles() : 0.0;
   return s;
 }
@@ -624,7 +637,7 @@ std::vector<double> distance_bounds(const TriMesh& input, const RemeshOptions& o
 // stray at most the bound),
 // refining tenfold at most; `changed` counts the points where that made M finer.
 std::vector<Sym3> bounded_metrics(const std::vector<Sym3>& metrics, const std::vector<double>& bound,
-                                  const analysis::CurvatureField& c, int& changed) {
+                                  const analysis::CurvatureField& c, int& changed, BoundPeak& peak) {
   std::vector<Sym3> out = metrics;
   changed = 0;
   for (size_t v = 0; v < metrics.size(); ++v) {
@@ -636,7 +649,9 @@ std::vector<Sym3> bounded_metrics(const std::vector<Sym3>& metrics, const std::v
     const Sym3 g = sizing::clamp_sizes(sizing::chord_metric(c, static_cast<int>(v), 0.5 * bound[v], anisotropic),
                                        0.1 * sizes.minCoeff(), std::numeric_limits<double>::infinity());
     out[v] = sizing::intersect(metrics[v], g);
-    changed += out[v].matrix().trace() > 1.01 * metrics[v].matrix().trace();
+    const double factor = out[v].matrix().trace() / metrics[v].matrix().trace();
+    changed += factor > 1.01;
+    peak.raise(static_cast<int>(v), factor);
   }
   return out;
 }
@@ -648,6 +663,7 @@ struct Prepared {
   std::vector<double> bound;
   std::vector<Sym3> metric;
   int geometric_points = 0;
+  BoundPeak peak;
 };
 
 Prepared prepare(const TriMesh& input, const std::vector<Sym3>& metrics, const RemeshOptions& options) {
@@ -661,7 +677,7 @@ Prepared prepare(const TriMesh& input, const std::vector<Sym3>& metrics, const R
     curvature = &*own;
   }
   p.bound = distance_bounds(input, options, curvature);
-  p.metric = options.geometric_metric && bounded ? bounded_metrics(metrics, p.bound, *curvature, p.geometric_points)
+  p.metric = options.geometric_metric && bounded ? bounded_metrics(metrics, p.bound, *curvature, p.geometric_points, p.peak)
                                                  : metrics;
   return p;
 }
@@ -690,7 +706,7 @@ RemeshResult adapt(const TriMesh& input, const std::vector<Sym3>& metrics, const
   Prepared prepared = prepare(input, metrics, options);
   const std::vector<double>& bound = prepared.bound;
   const int geometric_points = prepared.geometric_points;
-  SurfaceModel model(input, prepared.metric, std::move(prepared.features));
+  SurfaceModel model(input, prepared.metric, std::move(prepared.features), options.reconstruction);
   Remesher remesher(model, options, bound);
   remesher.run(reporter);
   RemeshResult result;
@@ -703,6 +719,9 @@ RemeshResult adapt(const TriMesh& input, const std::vector<Sym3>& metrics, const
   result.stats.moves = remesher.counts.moves;
   result.stats.refinements = remesher.counts.refinements;
   result.stats.geometric_points = geometric_points;
+  result.stats.bound_peak = prepared.peak;
+  result.stats.bound_peak.raise(remesher.counts.bound_peak.point, remesher.counts.bound_peak.factor);
+  if (result.stats.bound_peak.point >= 0) result.stats.bound_location = input.points[result.stats.bound_peak.point];
   result.stats.tightened = remesher.counts.tightened;
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
@@ -715,14 +734,47 @@ RemeshResult adapt_to_count(const TriMesh& input, const std::vector<Sym3>& metri
                    target_triangles, reporter, tolerance, max_corrections);
 }
 
+namespace {
+
+// Why a count stays more than 3 % (the sizing issue's tolerance) off its target, or nothing.
+std::string count_note(const RemeshStats& s, double target, bool held, int runs) {
+  const double off = s.triangles / target - 1.0;
+  if (std::abs(off) <= 0.03) return {};
+  const std::string head = fmt::format("{} triangles for a target of {:.0f} ({:+.1f} %)", s.triangles, target, 100.0 * off);
+  // Above the target, where the distance bound refined anything: it holds the count (its chord
+  // bound and tightening do not scale with the field).
+  if (off > 0.0 && (s.bound_peak.factor > 1.01 || s.refinements > 0 || s.tightened > 0)) {
+    std::string where;
+    if (s.bound_peak.point >= 0)
+      where = fmt::format(", most ({:.3g} times the field's triangle density) near input point {} ({:.5g}, {:.5g}, {:.5g})",
+                          s.bound_peak.factor, s.bound_peak.point, s.bound_location.x(), s.bound_location.y(),
+                          s.bound_location.z());
+    return fmt::format("{}: the distance bound holds it (--hausdorff-relative, --hausdorff): the vessel's curvature "
+                       "there needs more triangles than the field gives{}; a larger bound lets the count fall to the "
+                       "target (0: no bound)",
+                       head, where);
+  }
+  if (held)
+    return fmt::format("{}: no bound acted, the edges are within the unit band of the field already (the remesher "
+                       "leaves edges of 1/sqrt(2) to sqrt(2) times the size asked alone): a count this near the input's "
+                       "own is not reached by scaling; the closest run is kept",
+                       head);
+  return fmt::format("{} after {} runs: the count scatters between runs at nearby scales of the field (the closest run is "
+                     "kept); a slightly different target or size field lands elsewhere",
+                     head, runs);
+}
+
+}  // namespace
+
 RemeshResult fit_count(const Engine& engine, const std::vector<Sym3>& metrics, double target_triangles,
                        const Reporter& reporter, double tolerance, int max_corrections) {
   if (!(target_triangles > 0.0)) throw OptionError("the target triangle count must be positive");
   RemeshResult result = engine(metrics);
   double seconds = result.stats.seconds;
   // The count goes roughly as scale^alpha for a metric scaled by `scale` (alpha = 1 in theory;
-  // the discrete result scatters by some percent). First steps assume alpha = 1; once two runs
-  // bracket the target, the next scale interpolates between them in log-log. Two proportional
+  // the discrete result scatters by some percent). The first step assumes alpha = 1, the next
+  // ones the secant of the last two runs (in log-log); once two runs bracket the target, the next
+  // scale interpolates between them in log-log. Two proportional
   // steps in a row that each move the count by less than a quarter of what they asked (in log)
   // end the loop: a bound the scale does not move holds the count (the chord bound of the
   // distance bound does, on thin vessels), and further steps would only coarsen the rest of the
@@ -733,6 +785,7 @@ RemeshResult fit_count(const Engine& engine, const std::vector<Sym3>& metrics, d
   };
   std::vector<Run> runs = {{1.0, static_cast<double>(result.stats.triangles)}};
   int weak_steps = 0;  // proportional steps in a row that moved the count little
+  bool held = false;   // two such steps ended the loop
   for (int round = 0; round < max_corrections; ++round) {
     if (std::abs(result.stats.triangles / target_triangles - 1.0) <= tolerance) break;
     const Run* below = nullptr;
@@ -747,8 +800,21 @@ RemeshResult fit_count(const Engine& engine, const std::vector<Sym3>& metrics, d
       const double t = std::log(target_triangles / below->count) / std::log(above->count / below->count);
       scale = std::exp(std::log(below->scale) + t * (std::log(above->scale) - std::log(below->scale)));
     } else {
+      // The secant through the last two runs in log-log where the count answered the last step
+      // (by a power of the scale from 0.25 up): where a bound holds part of the count it follows
+      // the scale to a power below 1 (0.45 on a coarse faceted bifurcation's anisotropic field:
+      // proportional steps crept 28029, 24107, 22422, 21651 and overshot to 19156 for 20000),
+      // which the secant meets in a step. A count that barely answered sits on a plateau (the
+      // unit band's dead zone, a bound holding all of it): proportional steps, as at first.
       const Run& last = runs.back();
       scale = last.scale * target_triangles / std::max(1.0, last.count);
+      if (runs.size() >= 2) {
+        const Run& before = runs[runs.size() - 2];
+        const double power =
+            std::log(std::max(1.0, last.count) / std::max(1.0, before.count)) / std::log(last.scale / before.scale);
+        if (power >= 0.25 && std::isfinite(power))
+          scale = last.scale * std::pow(target_triangles / std::max(1.0, last.count), 1.0 / std::min(power, 1.5));
+      }
     }
     // A scale tried already gives the same mesh again (the engines are deterministic): a
     // scattered count left the bracket as it was.
@@ -768,25 +834,15 @@ RemeshResult fit_count(const Engine& engine, const std::vector<Sym3>& metrics, d
     const double moved = std::log(count / std::max(1.0, last)) / std::log(target_triangles / std::max(1.0, last));
     weak_steps = proportional && !(moved >= 0.25) ? weak_steps + 1 : 0;
     if (weak_steps == 2 && std::abs(count / target_triangles - 1.0) > tolerance) {
-      // Which bound: the distance bound where it refined or tightened anything; else none did and
-      // the mesh's edges are all within the unit band of the scaled field already (the remesher
-      // leaves edges of metric length 1/sqrt 2 to sqrt 2 alone, as MMG does: a structured input
-      // near the size asked stays as it is).
-      const bool distance_bound = next.stats.refinements > 0 || next.stats.tightened > 0 ||
-                                  result.stats.refinements > 0 || result.stats.tightened > 0;
-      reporter.info(fmt::format(
-          "the count moved by {:.0f} % of the step asked ({:.0f} triangles), the second such step: {}; keeping the "
-          "closest run ({} triangles)",
-          100.0 * moved, count,
-          distance_bound ? "a bound holds it (the distance bound: --hausdorff, --hausdorff-relative)"
-                         : "no bound acted, the edges are within the unit band of the field already (the remesher "
-                           "leaves edges of 1/sqrt(2) to sqrt(2) times the size asked alone): a count this near the "
-                           "input's own is not reached by scaling",
-          result.stats.triangles));
+      reporter.info(fmt::format("the count moved by {:.0f} % of the step asked ({:.0f} triangles), the second such step",
+                                100.0 * moved, count));
+      held = true;
       break;
     }
   }
   result.stats.seconds = seconds;
+  result.count_note = count_note(result.stats, target_triangles, held, static_cast<int>(runs.size()));
+  if (!result.count_note.empty()) reporter.warning(result.count_note);
   return result;
 }
 

@@ -26,6 +26,7 @@
 #include "remesh/surface_model.h"
 
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace vesselmesh::remesh {
@@ -41,6 +42,11 @@ struct RemeshOptions {
   double hausdorff = 0.0;
   double hausdorff_relative = 0.02;
   const std::vector<double>* input_radius = nullptr;
+  // What the points lie on and the bounds measure against: the smooth surface the input's
+  // triangles stand for (phong: SurfaceModel), or the triangles themselves (facets, as mmgs: a
+  // coarse segmentation's facets are then reproduced to within the bound, at a cost in triangles
+  // where the input's edges are as long as a small branch's radius).
+  Reconstruction reconstruction = Reconstruction::phong;
   // The metric is first intersected with the chord bound for half the distance bound
   // (sizing::chord_metric; isotropic where the metric is, else along the principal
   // directions), never refining more than tenfold: the bound shapes the mesh, as in mmgs,
@@ -49,6 +55,19 @@ struct RemeshOptions {
   // The input's curvature (per point, e.g. what sizing used); computed on each side of the
   // creases when absent.
   const analysis::CurvatureField* curvature = nullptr;
+};
+
+// Where the distance bound refined the size field most: an input point and the factor it put on
+// the metric there (the triangle density; 1: nowhere).
+struct BoundPeak {
+  int point = -1;
+  double factor = 1.0;
+  void raise(int v, double f) {
+    if (f > factor) {
+      factor = f;
+      point = v;
+    }
+  }
 };
 
 // Figures of an adapted surface against its metric (lengths and quality in the metric).
@@ -60,10 +79,14 @@ struct RemeshStats {
   double mean_quality = 0.0, min_quality = 0.0;
   double hausdorff = 0.0;            // largest distance of an output triangle from the input
   double hausdorff_relative = -1.0;  // largest such distance over the local radius (-1: unknown)
+  // The same against the input's triangles themselves (equal to the above with facets).
+  double hausdorff_facets = 0.0, hausdorff_facets_relative = -1.0;
   int splits = 0, collapses = 0, flips = 0, moves = 0;
   int refinements = 0;               // splits made to meet the distance bounds at the end
   int geometric_points = 0;          // input points whose metric the chord bound refined
   int tightened = 0;                 // triangles too far from the input that refined the metric
+  BoundPeak bound_peak;              // where the bound (its chord metric, its tightening) refined most
+  Vec3 bound_location = Vec3::Zero();  // that input point
   double seconds = 0.0;
 };
 
@@ -71,27 +94,31 @@ struct RemeshResult {
   TriMesh mesh;
   std::vector<Sym3> metric;  // per output point: what the mesh was adapted to
   RemeshStats stats;
+  // fit_count: why the count stays more than 3 % off the target (which bound, where, what
+  // relaxes it; or the count's scatter), also warned; empty when it is within.
+  std::string count_note;
 };
 
 RemeshResult adapt(const TriMesh& input, const std::vector<Sym3>& metrics, const RemeshOptions& options = {},
                    const Reporter& reporter = silent_reporter());
 
 // adapt(), then, while the triangle count is off `target_triangles` by more than `tolerance`
-// (relative), the metric scaled (by target / count while no two runs bracket the target: the
-// count goes as the metric's density; then interpolating the bracketing runs in log-log) and
-// adapt() again, `max_corrections` times at most; the closest run is returned. The sizing
-// issue's target count (3 %; the 2 % default leaves a margin). The distance bound's refinement
-// does not scale, so a count it dominates may stay above target: two proportional steps in a row
-// that each move the count by less than a quarter of what they asked (in log) end the loop.
+// (relative), the metric scaled (while no two runs bracket the target: first by target / count,
+// the count going as the metric's density, then along the secant of the last two runs in log-log;
+// then interpolating the bracketing runs in log-log) and adapt() again, `max_corrections` times at
+// most; the closest run is returned. The sizing issue's target count (3 %; the 2 % default leaves
+// a margin). The distance bound's refinement does not scale, so a count it dominates may stay
+// above target: two unbracketed steps in a row that each move the count by less than a quarter of
+// what they asked (in log) end the loop. A count left more than 3 % off: RemeshResult::count_note.
 RemeshResult adapt_to_count(const TriMesh& input, const std::vector<Sym3>& metrics, double target_triangles,
                             const RemeshOptions& options = {}, const Reporter& reporter = silent_reporter(),
-                            double tolerance = 0.02, int max_corrections = 4);
+                            double tolerance = 0.02, int max_corrections = 6);
 
 // A remeshing engine: the surface adapted to the given metric (native: adapt; Gmsh: reparametrize).
 using Engine = std::function<RemeshResult(const std::vector<Sym3>& metric)>;
 // What adapt_to_count does, for any engine.
 RemeshResult fit_count(const Engine& engine, const std::vector<Sym3>& metrics, double target_triangles,
-                       const Reporter& reporter = silent_reporter(), double tolerance = 0.02, int max_corrections = 4);
+                       const Reporter& reporter = silent_reporter(), double tolerance = 0.02, int max_corrections = 6);
 
 // The metric adapt() works to: `metrics` intersected with the chord bound of the distance bounds
 // (as RemeshOptions::geometric_metric says; unchanged without bounds). `changed` (may be null)
@@ -99,8 +126,8 @@ RemeshResult fit_count(const Engine& engine, const std::vector<Sym3>& metrics, d
 std::vector<Sym3> effective_metric(const TriMesh& input, const std::vector<Sym3>& metrics, const RemeshOptions& options,
                                    int* changed = nullptr);
 
-// The figures of `mesh` against per-point metrics, its distance from `model`'s input, and
-// (with radii) relative to the local radius. The distance is the global closest point's, or
+// The figures of `mesh` against per-point metrics, its distance from `model`'s input (its
+// reconstruction, and its triangles), and (with radii) relative to the local radius. The distance is the global closest point's, or
 // with `hints` (an input triangle per point) the local one (SurfaceModel::project with a hint:
 // never smaller, on the same wall), which is what adapt() reports.
 RemeshStats measure(const TriMesh& mesh, const std::vector<Sym3>& metric, const SurfaceModel& model,

@@ -234,7 +234,8 @@ RemeshResult remesh_once(const TriMesh& input, const std::vector<Sym3>& metrics,
                          Patches& patches, double& factor, bool calibrate, const Reporter& reporter) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<Sym3> field = effective_metric(input, metrics, o.remesh);
-  const SurfaceModel model(input, field, o.remesh.features);
+  // Gmsh's points lie on the input's triangles (its patches are theirs): measured against them.
+  const SurfaceModel model(input, field, o.remesh.features, Reconstruction::facets);
   TriMesh mesh;
   std::vector<Sym3> metric;  // the field at the mesh's points (their closest input points)
   std::vector<int> hints;    // and the input triangles they lie on

@@ -63,7 +63,7 @@ struct GmshRemeshOptions {
   RemeshOptions remesh;              // distance bounds, local radius, features: as the native engine
   double size_factor = 1.0;          // the sizes handed to Gmsh times this at first (a calibration)
   // > 0: the metric scaled until Gmsh makes this many triangles, as remesh::fit_count does for
-  // the native engine (within 2 %, 4 corrections at most, the closest run kept); the input is
+  // the native engine (within 2 %, 6 corrections at most, the closest run kept); the input is
   // classified and parametrized once for all the runs.
   double target_triangles = 0.0;
 };

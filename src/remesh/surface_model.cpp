@@ -1,8 +1,11 @@
 #include "remesh/surface_model.h"
 
+#include "analysis/normals.h"
 #include "mesh/error.h"
 #include "mesh/geometry.h"
 #include "sizing/metric.h"
+
+#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -31,11 +34,13 @@ Vec3 barycentric(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& q) {
 
 }  // namespace
 
-SurfaceModel::SurfaceModel(const TriMesh& input, const std::vector<Sym3>& metrics, const FeatureOptions& options)
-    : SurfaceModel(input, metrics, analysis::detect_features(input, options)) {}
+SurfaceModel::SurfaceModel(const TriMesh& input, const std::vector<Sym3>& metrics, const FeatureOptions& options,
+                           Reconstruction reconstruction)
+    : SurfaceModel(input, metrics, analysis::detect_features(input, options), reconstruction) {}
 
-SurfaceModel::SurfaceModel(const TriMesh& input, const std::vector<Sym3>& metrics, analysis::Features features)
-    : input_(input), metrics_(metrics), locator_(input), incidence_(mesh::build_vertex_triangles(input)),
+SurfaceModel::SurfaceModel(const TriMesh& input, const std::vector<Sym3>& metrics, analysis::Features features,
+                           Reconstruction reconstruction)
+    : input_(input), reconstruction_(reconstruction), metrics_(metrics), locator_(input), incidence_(mesh::build_vertex_triangles(input)),
       features_(std::move(features)) {
   VM_CHECK(metrics.size() == input.points.size(), "one metric per input point");
   VM_CHECK(features_.corner_copy.size() == input.triangles.size(), "features of another surface");
@@ -53,9 +58,23 @@ SurfaceModel::SurfaceModel(const TriMesh& input, const std::vector<Sym3>& metric
     for (int copy : features_.corner_copy[t]) copy_normals_[copy] += mesh::triangle_area_vector(input, t);
   for (Vec3& n : copy_normals_)
     if (n.squaredNorm() > 0.0) n.normalize();
+  // Phong's normals: the quadric fit's (second order on irregular meshes; a face-weighted mean
+  // is first order, and the patch's bulge is only as good as its normals: on a jittered coarse
+  // sphere the area-weighted ones leave it a third of the facets' depth off, the fitted ones a
+  // tenth or less).
+  const mesh::EdgeMap& edges = features_.edges;
+  // The points on a crease or a label border keep the facets along it (both sides meet there);
+  // an open end's rim, with one side only, follows the surface (a coarse end's polygon becomes
+  // the vessel's section: its radius no longer the inscribed polygon's).
+  if (reconstruction_ == Reconstruction::phong) {
+    fitted_normals_ = analysis::vertex_normals(input);
+    rigid_.assign(input.points.size(), 0);
+    for (int e = 0; e < edges.num_edges(); ++e)
+      if (features_.curve_of_edge[e] >= 0 && !edges.is_boundary(e)) rigid_[edges.edges[e][0]] = rigid_[edges.edges[e][1]] = 1;
+    in_rim_planes(edges);
+  }
   curves_.resize(features_.num_curves);
   for (auto& curve : curves_) curve = std::make_unique<Curve>();
-  const mesh::EdgeMap& edges = features_.edges;
   for (int e = 0; e < edges.num_edges(); ++e)
     if (features_.curve_of_edge[e] >= 0) curves_[features_.curve_of_edge[e]]->segments.push_back(edges.edges[e]);
   for (auto& curve : curves_) {
@@ -66,6 +85,39 @@ SurfaceModel::SurfaceModel(const TriMesh& input, const std::vector<Sym3>& metric
 }
 
 SurfaceModel::~SurfaceModel() = default;
+
+// An open end is a cut, its rim in a plane: the rim points' normals are turned into the plane of
+// their curve (the least-squares plane of its points; none for a straight one), so that its
+// points, moved along them, stay in it (the one-sided fit tilts them by a little).
+void SurfaceModel::in_rim_planes(const mesh::EdgeMap& edges) {
+  std::vector<std::vector<int>> rim(features_.num_curves);
+  std::vector<char> open(features_.num_curves, 1);
+  for (int e = 0; e < edges.num_edges(); ++e) {
+    const int c = features_.curve_of_edge[e];
+    if (c < 0) continue;
+    if (!edges.is_boundary(e)) open[c] = 0;
+    rim[c].push_back(edges.edges[e][0]);
+    rim[c].push_back(edges.edges[e][1]);
+  }
+  for (int c = 0; c < features_.num_curves; ++c) {
+    if (!open[c]) continue;
+    std::sort(rim[c].begin(), rim[c].end());
+    rim[c].erase(std::unique(rim[c].begin(), rim[c].end()), rim[c].end());
+    Vec3 centre = Vec3::Zero();
+    for (int v : rim[c]) centre += input_.points[v];
+    centre /= static_cast<double>(rim[c].size());
+    Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+    for (int v : rim[c]) spread += (input_.points[v] - centre) * (input_.points[v] - centre).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(spread);
+    if (!(eigen.eigenvalues()[1] > 1e-6 * eigen.eigenvalues()[2])) continue;  // a straight rim
+    const Vec3 axis = eigen.eigenvectors().col(0);
+    for (int v : rim[c]) {
+      Vec3& n = fitted_normals_[v];
+      n -= n.dot(axis) * axis;
+      if (n.squaredNorm() > 0.0) n.normalize();
+    }
+  }
+}
 
 void SurfaceModel::refine_metric(int v, double factor) {
   VM_CHECK(factor > 0.0, "a metric factor must be positive");
@@ -81,9 +133,7 @@ Sym3 SurfaceModel::metric_at(int triangle, const Vec3& l) const {
   return sizing::interpolate_logs(logs, weights, 3);
 }
 
-Projection SurfaceModel::finish(const Vec3& point, int triangle) const {
-  const Triangle& f = input_.triangles[triangle];
-  const Vec3 l = barycentric(input_.points[f[0]], input_.points[f[1]], input_.points[f[2]], point);
+Projection SurfaceModel::finish(const Vec3& point, int triangle, const Vec3& l) const {
   Projection out;
   out.point = point;
   out.triangle = triangle;
@@ -144,7 +194,114 @@ SurfaceModel::Nearest SurfaceModel::walk(const Vec3& p, int hint) const {
   return {best, best_t};
 }
 
+std::array<Vec3, 3> SurfaceModel::corner_normals(int t) const {
+  std::array<Vec3, 3> n;
+  for (int i = 0; i < 3; ++i) {
+    const int v = input_.triangles[t][i];
+    n[i] = rigid_[v] ? Vec3::Zero() : fitted_normals_[v];
+  }
+  return n;
+}
+
+Vec3 SurfaceModel::surface_point(int t, const Vec3& l) const {
+  const Triangle& f = input_.triangles[t];
+  const Vec3 q = l[0] * input_.points[f[0]] + l[1] * input_.points[f[1]] + l[2] * input_.points[f[2]];
+  if (reconstruction_ == Reconstruction::facets) return q;
+  const std::array<Vec3, 3> n = corner_normals(t);
+  Vec3 s = q;
+  for (int i = 0; i < 3; ++i) s += 0.5 * l[i] * n[i].dot(input_.points[f[i]] - q) * n[i];
+  return s;
+}
+
+// Gauss-Newton on |p - S(l)|^2 over the triangle's barycentric coordinates (l1, l2 free, l0 =
+// 1 - l1 - l2), each step clamped to the triangle; S is quadratic in l, so from the flat
+// triangle's closest point (off by the patch's displacement, a small fraction of the edge) a few
+// steps converge. A sliver's ill-conditioned steps stop it where it is.
+SurfaceModel::OnPatch SurfaceModel::onto_patch(const Vec3& p, const Nearest& facet) const {
+  const Triangle& f = input_.triangles[facet.triangle];
+  const Vec3 v[3] = {input_.points[f[0]], input_.points[f[1]], input_.points[f[2]]};
+  Vec3 l = barycentric(v[0], v[1], v[2], facet.point);
+  if (reconstruction_ == Reconstruction::facets) return {facet.point, l};
+  const std::array<Vec3, 3> n = corner_normals(facet.triangle);
+  if (n[0].squaredNorm() + n[1].squaredNorm() + n[2].squaredNorm() == 0.0) return {facet.point, l};
+  auto evaluate = [&](const Vec3& b, Vec3* du, Vec3* dv) {
+    const Vec3 q = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
+    Vec3 s = q;
+    Vec3 d[3];  // each corner's displacement of q, n_i n_i^T (v_i - q)
+    for (int i = 0; i < 3; ++i) {
+      d[i] = n[i].dot(v[i] - q) * n[i];
+      s += 0.5 * b[i] * d[i];
+    }
+    if (du) {
+      // dq/du = v1 - v0 (u = l1), dq/dv = v2 - v0; d d_i / dx = -n_i n_i^T dq/dx.
+      for (int k = 1; k <= 2; ++k) {
+        const Vec3 e = v[k] - v[0];
+        Vec3 ds = e + 0.5 * (d[k] - d[0]);
+        for (int i = 0; i < 3; ++i) ds -= 0.5 * b[i] * n[i].dot(e) * n[i];
+        *(k == 1 ? du : dv) = ds;
+      }
+    }
+    return s;
+  };
+  Vec3 s = evaluate(l, nullptr, nullptr);
+  for (int it = 0; it < 4; ++it) {
+    Vec3 su, sv;
+    evaluate(l, &su, &sv);
+    const Vec3 r = p - s;
+    const double a = su.dot(su), b = su.dot(sv), c = sv.dot(sv);
+    const double det = a * c - b * b;
+    if (!(det > 1e-12 * (a + c) * (a + c))) break;
+    const double gu = su.dot(r), gv = sv.dot(r);
+    const double du = (c * gu - b * gv) / det, dv = (a * gv - b * gu) / det;
+    Vec3 next(l[0] - du - dv, l[1] + du, l[2] + dv);
+    next = next.cwiseMax(0.0);
+    next /= next.sum();
+    const Vec3 moved = evaluate(next, nullptr, nullptr);
+    if ((p - moved).squaredNorm() > r.squaredNorm()) break;  // clamped against the triangle's edge
+    const bool settled = (moved - s).squaredNorm() <= 1e-24 * (a + c);
+    l = next;
+    s = moved;
+    if (settled) break;
+  }
+  return {s, l};
+}
+
+// The patch of the closest triangle, or, when its closest point sits on the triangle's rim
+// (the smooth surface's closest point may lie across it), the best of the patches around that
+// edge or point, each from its own triangle's closest point.
+SurfaceModel::OnPatch SurfaceModel::onto_surface(const Vec3& p, Nearest& facet) const {
+  OnPatch best = onto_patch(p, facet);
+  if (reconstruction_ == Reconstruction::facets) return best;
+  const Triangle& f = input_.triangles[facet.triangle];
+  int inside[3], count = 0;
+  for (int i = 0; i < 3; ++i)
+    if (best.barycentric[i] > 1e-9) inside[count++] = f[i];
+  if (count == 3) return best;
+  double best_d = (best.point - p).squaredNorm();
+  const int from = facet.triangle;
+  for (int u : incidence_.of(inside[0])) {
+    if (u == from) continue;
+    const Triangle& g = input_.triangles[u];
+    if (count == 2 && std::find(g.begin(), g.end(), inside[1]) == g.end()) continue;
+    const Nearest other{mesh::closest_point_on_triangle(p, input_.points[g[0]], input_.points[g[1]], input_.points[g[2]]),
+                        u};
+    const OnPatch on = onto_patch(p, other);
+    const double d = (on.point - p).squaredNorm();
+    if (d < best_d) {
+      best_d = d;
+      best = on;
+      facet = other;
+    }
+  }
+  return best;
+}
+
 SurfaceModel::Nearest SurfaceModel::nearest(const Vec3& p, int hint) const {
+  Nearest facet = nearest_facet(p, hint);
+  return {onto_surface(p, facet).point, facet.triangle};
+}
+
+SurfaceModel::Nearest SurfaceModel::nearest_facet(const Vec3& p, int hint) const {
   if (hint >= 0) {
     const Nearest local = walk(p, hint);
     if (local.triangle >= 0) return local;
@@ -154,8 +311,9 @@ SurfaceModel::Nearest SurfaceModel::nearest(const Vec3& p, int hint) const {
 }
 
 Projection SurfaceModel::project(const Vec3& p, int hint) const {
-  const Nearest n = nearest(p, hint);
-  return finish(n.point, n.triangle);
+  Nearest facet = nearest_facet(p, hint);
+  const OnPatch on = onto_surface(p, facet);
+  return finish(on.point, facet.triangle, on.barycentric);
 }
 
 Projection SurfaceModel::project_on_curve(int curve, const Vec3& p) const {
@@ -164,6 +322,13 @@ Projection SurfaceModel::project_on_curve(int curve, const Vec3& p) const {
   const auto [a, b] = c.segments[hit.segment];
   Projection out;
   out.point = hit.point;
+  if (reconstruction_ == Reconstruction::phong) {
+    // On the smooth surface's edge between a and b (what the patch of the triangle on it gives
+    // there: only a's and b's normals count on an edge); zero on a crease or label border.
+    const Vec3 q = hit.point;
+    const Vec3 na = rigid_[a] ? Vec3::Zero() : fitted_normals_[a], nb = rigid_[b] ? Vec3::Zero() : fitted_normals_[b];
+    out.point += 0.5 * ((1.0 - hit.t) * na.dot(input_.points[a] - q) * na + hit.t * nb.dot(input_.points[b] - q) * nb);
+  }
   const Sym3 logs[2] = {logs_[a], logs_[b]};
   const double weights[2] = {1.0 - hit.t, hit.t};
   out.metric = sizing::interpolate_logs(logs, weights, 2);

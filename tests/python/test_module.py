@@ -68,6 +68,9 @@ def test_remesh_is_the_programs(pipe, remeshed):
     assert stats["triangles"] == program["triangles"] == len(triangles)
     assert stats["min_angle_deg"] == pytest.approx(program["min_angle_deg"], abs=0.01)  # the program rounds
     assert stats["min_angle_deg"] >= 20.0
+    assert stats["hausdorff"] == pytest.approx(program["hausdorff"], abs=1e-4)
+    assert stats["hausdorff_facets"] == pytest.approx(program["hausdorff_facets"], abs=1e-4)
+    assert (stats["count_note"] == "") == (program["count_note"] is None)
 
 
 def test_volume_round_trip(pipe, remeshed):

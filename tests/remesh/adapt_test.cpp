@@ -1,6 +1,7 @@
 #include "remesh/adapt.h"
 
 #include "analysis/curvature.h"
+#include "analysis/open_ends.h"
 #include "centerline/distance_map.h"
 #include "centerline/extract.h"
 #include "io/surface.h"
@@ -11,6 +12,7 @@
 #include "mesh/statistics.h"
 #include "sizing/metric.h"
 #include "sizing/size_field.h"
+#include "synth/bifurcation.h"
 #include "synth/shapes.h"
 #include "test_support.h"
 
@@ -85,12 +87,10 @@ TEST(Remesh, SphereIsotropicMeetsTheQualityTargets) {
   // About area / (sqrt 3 / 4) = 726 triangles of unit side.
   EXPECT_GT(r.stats.triangles, 500);
   EXPECT_LT(r.stats.triangles, 1000);
-  // Every point on the input (whose flat triangles lie inside the sphere), every triangle facing out.
+  // Every point on the smooth surface the input's facets stand for (they lie up to `depth`
+  // inside the sphere): on the sphere to a tenth of that; every triangle facing out.
   const double depth = facet_depth(input, 5.0);
-  for (const Vec3& p : r.mesh.points) {
-    EXPECT_LE(p.norm(), 5.0 + 1e-9);
-    EXPECT_GE(p.norm(), 5.0 - depth);
-  }
+  for (const Vec3& p : r.mesh.points) EXPECT_NEAR(p.norm(), 5.0, 0.1 * depth);
   for (int t = 0; t < r.mesh.num_triangles(); ++t) {
     const Triangle& g = r.mesh.triangles[t];
     const Vec3 c = (r.mesh.points[g[0]] + r.mesh.points[g[1]] + r.mesh.points[g[2]]) / 3.0;
@@ -238,8 +238,9 @@ struct CountingEngine {
 
 // The log, kept.
 struct KeptLog : Reporter {
-  mutable std::string text;
+  mutable std::string text, warnings;
   void info(std::string_view message) const override { text += std::string(message) + "\n"; }
+  void warning(std::string_view message) const override { warnings += std::string(message) + "\n"; }
 };
 
 // A count a bound holds (it barely moves with the scale): two weak steps in a row end the loop,
@@ -250,21 +251,25 @@ TEST(FitCount, EndsWhenABoundHoldsTheCount) {
   CountingEngine held{[](double s) { return static_cast<int>(16000.0 * std::pow(s, 0.05)); }};
   const KeptLog log;
   const RemeshResult r = fit_count(std::cref(held), identity, 8000.0, log);
-  EXPECT_EQ(held.scales.size(), 3u);  // the first run and two weak steps (4 corrections allowed)
+  EXPECT_EQ(held.scales.size(), 3u);  // the first run and two weak steps (6 corrections allowed)
   EXPECT_EQ(r.stats.triangles, held.count(held.scales.back()));
   EXPECT_LT(r.stats.triangles, 16000);
-  // Which bound, said: none acted (the mesh within the field's unit band already, as a structured
-  // pipe near its own count), or the distance bound where it tightened the metric.
-  EXPECT_NE(log.text.find("no bound acted"), std::string::npos) << log.text;
-  EXPECT_EQ(log.text.find("the distance bound"), std::string::npos) << log.text;
+  // Which bound, said (a warning, and the result's note): none acted (the mesh within the
+  // field's unit band already, as a structured pipe near its own count), or the distance bound
+  // where it tightened the metric.
+  EXPECT_NE(r.count_note.find("no bound acted"), std::string::npos) << r.count_note;
+  EXPECT_EQ(r.count_note.find("the distance bound"), std::string::npos) << r.count_note;
+  EXPECT_EQ(log.warnings, r.count_note + "\n");
   CountingEngine bounded{held.count, {}, 12};
   const KeptLog bounded_log;
-  fit_count(std::cref(bounded), identity, 8000.0, bounded_log);
-  EXPECT_NE(bounded_log.text.find("a bound holds it (the distance bound"), std::string::npos) << bounded_log.text;
+  const RemeshResult b = fit_count(std::cref(bounded), identity, 8000.0, bounded_log);
+  EXPECT_NE(b.count_note.find("the distance bound holds it (--hausdorff-relative"), std::string::npos) << b.count_note;
+  EXPECT_NE(bounded_log.warnings.find("the distance bound holds it"), std::string::npos);
   // Weak once (scatter), then proportional again: the target is reached.
   CountingEngine scattered{[](double s) { return s > 0.8 ? 11526 : static_cast<int>(11526.0 * s / 0.8); }};
   const RemeshResult t = fit_count(std::cref(scattered), identity, 10000.0);
   EXPECT_NEAR(t.stats.triangles, 10000, 200);
+  EXPECT_TRUE(t.count_note.empty()) << t.count_note;
 }
 
 // A scattered count that leaves the bracket as it was would repeat a scale: the loop ends instead.
@@ -277,6 +282,7 @@ TEST(FitCount, NeverRepeatsAScale) {
   EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end());
   EXPECT_EQ(engine.scales.size(), 3u);  // 1, 2, then the interpolated one
   EXPECT_EQ(r.stats.triangles, 6000);   // the closest of 6000, 18000 and 5000
+  EXPECT_NE(r.count_note.find("scatters"), std::string::npos) << r.count_note;
 }
 
 TEST(Remesh, AMetricOfAnotherSurfaceIsAnError) {
@@ -286,6 +292,141 @@ TEST(Remesh, AMetricOfAnotherSurfaceIsAnError) {
   options.hausdorff = -1.0;
   EXPECT_THROW(adapt(input, metric_of(input, [](const Vec3&) { return sizing::isotropic_metric(1.0); }), options),
                OptionError);
+}
+
+// The local radius of the distance bound, as `vesselmesh remesh` takes it: the distance map's
+// where the surface has ends to trace centerlines between; else (a closed surface: no distance
+// kind either) the inner poles'.
+struct LocalRadius {
+  std::optional<centerline::DistanceMap> distance;
+  std::vector<double> radius;
+};
+LocalRadius local_radius(const TriMesh& input) {
+  LocalRadius r;
+  try {
+    r.distance = centerline::distance_map(input, centerline::extract(input));
+    r.radius = r.distance->radius;
+  } catch (const InputError&) {
+    r.radius = centerline::pole_radius(input);
+  }
+  return r;
+}
+
+// Issue 31's class of inputs: a coarse, faceted segmentation of a bifurcation whose daughters'
+// radii (0.8, 0.6 mm) are about its edges (0.55 mm): made by remeshing a fine one onto its own
+// facets with no distance bound.
+TriMesh coarse_faceted_bifurcation() {
+  const TriMesh fine = synth::bifurcation({.radius = 2.3, .daughter_radius = {0.8, 0.6}, .parent_length = 10.0,
+                                           .daughter_length = 8.0, .blend = 0.6, .resolution = 0.3});
+  RemeshOptions coarse;
+  coarse.hausdorff_relative = 0.0;
+  coarse.reconstruction = Reconstruction::facets;
+  return adapt(fine, metric_of(fine, [](const Vec3&) { return sizing::isotropic_metric(0.55); }), coarse).mesh;
+}
+
+// Needles and near-duplicate points, as an edited segmentation has them: every so many edges
+// split a thousandth of the way from one end (each triangle split once at most).
+TriMesh with_needles(const TriMesh& input, int every) {
+  TriMesh out = input;
+  const mesh::EdgeMap edges = mesh::build_edge_map(input);
+  const mesh::VertexTriangles incidence = mesh::build_vertex_triangles(input);
+  std::vector<char> used(input.triangles.size(), 0);
+  for (int e = 0; e < edges.num_edges(); e += every) {
+    const auto [a, b] = edges.edges[e];
+    std::vector<int> around;
+    for (int t : incidence.of(a))
+      if (mesh::corner_of(input.triangles[t], b) >= 0) around.push_back(t);
+    if (around.size() != 2 || used[around[0]] || used[around[1]]) continue;
+    const int p = out.num_points();
+    out.points.push_back(input.points[a] + 1e-3 * (input.points[b] - input.points[a]));
+    for (int t : around) {
+      used[t] = 1;
+      Triangle f = out.triangles[t];
+      Triangle g = f;
+      f[mesh::corner_of(f, b)] = p;  // a, p, c and p, b, c in the triangle's own order
+      g[mesh::corner_of(g, a)] = p;
+      out.triangles[t] = f;
+      out.triangles.push_back(g);
+    }
+  }
+  return out;
+}
+
+// The four kinds at `target` triangles with the default distance bound (the local radius from
+// the distance map, else the inner poles, as `vesselmesh remesh`): the count within 3 %,
+// isotropic smallest angle >= 20 degrees, anisotropic mean quality >= 0.85, and the distance to
+// the smooth surface within 2 % of the radius.
+void expect_four_kinds_meet_the_targets(const TriMesh& input, double target, const std::string& what) {
+  const analysis::CurvatureField curvature = analysis::curvature(input);
+  const auto [distance, radius] = local_radius(input);
+  for (sizing::SizeKind kind : {sizing::SizeKind::uniform, sizing::SizeKind::distance, sizing::SizeKind::curvature,
+                                sizing::SizeKind::anisotropic}) {
+    if (kind == sizing::SizeKind::distance && !distance) continue;
+    const std::string name = what + " " + sizing::size_kind_name(kind);
+    const sizing::SizeField field = sizing::make_size_field(
+        input, {.kind = kind, .target_triangles = target},
+        {.curvature = &curvature, .distance = distance ? &*distance : nullptr});
+    RemeshOptions options;
+    options.input_radius = &radius;
+    const KeptLog log;
+    const RemeshResult r = adapt_to_count(input, field.metric, target, options, log);
+    const RemeshStats& s = r.stats;
+    SCOPED_TRACE(log.text);
+    // Within 3 %, or (above it) the note says the distance bound holds the count, and where.
+    if (std::abs(s.triangles / target - 1.0) > 0.03) {
+      EXPECT_GT(s.triangles, target) << name;
+      EXPECT_NE(r.count_note.find("the distance bound holds it"), std::string::npos) << name << ": " << r.count_note;
+      EXPECT_NE(r.count_note.find("near input point"), std::string::npos) << name << ": " << r.count_note;
+      EXPECT_LT(s.triangles, 1.15 * target) << name;  // (the facets held it at 2.5 times)
+    } else {
+      EXPECT_TRUE(r.count_note.empty()) << name << ": " << r.count_note;
+    }
+    if (kind == sizing::SizeKind::anisotropic)
+      EXPECT_GE(s.mean_quality, 0.85) << name;
+    else
+      EXPECT_GE(s.min_angle_deg, 20.0) << name;
+    EXPECT_LE(s.hausdorff_relative, 0.02 + 1e-9) << name;
+    EXPECT_GE(s.hausdorff_facets, s.hausdorff) << name;  // the facets lie off the smooth surface
+  }
+}
+
+// Issue 31: the distance bound measured against the smooth surface, not the facets. On the
+// facets (as mmgs and as before) the same command gives 2.5 times the count asked: the bound
+// refines to reproduce the facets' creases.
+TEST(Remesh, CoarseFacetedSegmentationMeetsTheCountAndTheAngles) {
+  const TriMesh input = coarse_faceted_bifurcation();
+  ASSERT_GT(mesh::statistics(input).edge_length.mean, 0.5);
+  expect_four_kinds_meet_the_targets(input, 20000.0, "open");
+  // The same on the facets: the count held far above the target by the bound.
+  const analysis::CurvatureField curvature = analysis::curvature(input);
+  const std::vector<double> radius = centerline::distance_map(input, centerline::extract(input)).radius;
+  RemeshOptions facets;
+  facets.reconstruction = Reconstruction::facets;
+  facets.input_radius = &radius;
+  const sizing::SizeField uniform = sizing::make_size_field(
+      input, {.kind = sizing::SizeKind::uniform, .target_triangles = 12000.0}, {.curvature = &curvature});
+  const RemeshResult held = adapt_to_count(input, uniform.metric, 12000.0, facets);
+  EXPECT_GT(held.stats.triangles, 1.5 * 12000.0);
+  EXPECT_DOUBLE_EQ(held.stats.hausdorff, held.stats.hausdorff_facets);
+}
+
+// The same closed by flat caps of a few triangles each (fans from the ends' centres: the
+// smallest of 6 triangles), and with needles and near-duplicate points through the doctor as
+// `vesselmesh remesh` reads them.
+TEST(Remesh, CappedAndNeedleSegmentationsMeetTheCountAndTheAngles) {
+  const TriMesh open = coarse_faceted_bifurcation();
+  TriMesh capped = analysis::fan_capped(open, analysis::open_ends(open));
+  mesh::clean(capped, {.find_self_intersections = false});
+  ASSERT_TRUE(mesh::statistics(capped).closed);
+  expect_four_kinds_meet_the_targets(capped, 20000.0, "capped");
+  TriMesh needles = with_needles(synth::bifurcation({.radius = 2.3, .daughter_radius = {0.8, 0.6},
+                                                     .parent_length = 10.0, .daughter_length = 8.0, .blend = 0.6,
+                                                     .resolution = 0.3, .jitter = 0.45}),
+                                 7);
+  mesh::clean(needles, {.find_self_intersections = false});
+  ASSERT_LT(mesh::statistics(needles).edge_length.min, 1e-3);
+  ASSERT_LT(mesh::statistics(needles).min_angle.min, 1.0);
+  expect_four_kinds_meet_the_targets(needles, 20000.0, "needles");
 }
 
 // The quality targets on the real vessels, for the four size kinds at a common triangle count.
@@ -303,16 +444,7 @@ TEST_P(RealVessel, AllFourKindsMeetTheTargets) {
   const TriMesh& input = file.mesh;
   const mesh::Statistics before = mesh::statistics(input);
   const analysis::CurvatureField curvature = analysis::curvature(input);
-  std::optional<centerline::DistanceMap> distance;
-  std::vector<double> radius;
-  try {
-    distance = centerline::distance_map(input, centerline::extract(input));
-    radius = distance->radius;
-  } catch (const InputError&) {
-    // A closed surface has no ends: no distance kind, and the radius comes from the inner
-    // poles, as `vesselmesh remesh` takes it.
-    radius = centerline::pole_radius(input);
-  }
+  const auto [distance, radius] = local_radius(input);
   const std::set<int> labels(input.labels.begin(), input.labels.end());
   for (sizing::SizeKind kind : {sizing::SizeKind::uniform, sizing::SizeKind::distance, sizing::SizeKind::curvature,
                                 sizing::SizeKind::anisotropic}) {
@@ -370,8 +502,9 @@ TEST_P(RealVessel, TargetCountWithinThreePercent) {
     // count cannot fall below what the bound needs: the carotid then lands 7-28 % above).
     RemeshOptions options;
     options.hausdorff_relative = 0.0;
-    const RemeshResult r = adapt_to_count(input, field.metric, kTarget, options);
-    EXPECT_NEAR(r.stats.triangles, kTarget, 0.03 * kTarget) << sizing::size_kind_name(kind);
+    const KeptLog log;
+    const RemeshResult r = adapt_to_count(input, field.metric, kTarget, options, log);
+    EXPECT_NEAR(r.stats.triangles, kTarget, 0.03 * kTarget) << sizing::size_kind_name(kind) << "\n" << log.text;
   }
 }
 
