@@ -225,6 +225,10 @@ Command add_synth_command(CLI::App& parent) {
         a.add_option("--parent-length", o.parent_length, "Parent length (mm)")->capture_default_str();
         a.add_option("--daughter-length", o.daughter_length, "Daughter length (mm)")->capture_default_str();
         a.add_option("--blend", o.blend, "Radius of the smooth blend at the junction (mm)")->capture_default_str();
+        a.add_option("--aneurysm-radius", o.aneurysm_radius,
+                     "A saccular aneurysm at the apex: a sphere of this radius (mm) on the daughters' bisector, its "
+                     "centre 0.7 radii beyond where the daughters' walls part, blended in (0: none)")
+            ->capture_default_str();
       },
       with_common_options(&synth::bifurcation)));
   shapes.push_back(add_anastomosis(*app));

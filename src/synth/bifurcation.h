@@ -5,7 +5,8 @@
 //
 // Geometry: the parent runs along +z from (0, 0, -parent_length) to the origin, where the
 // daughters start, in the xz plane at +angle_1 (towards +x) and -angle_2 from +z.
-// Labels: none. Ends: parent inlet, daughter 1, daughter 2 (bifurcation_ends()).
+// Labels: none. Ends: parent inlet, daughter 1, daughter 2 (bifurcation_ends()). Optionally an
+// aneurysm at the apex.
 #pragma once
 
 #include "mesh/trimesh.h"
@@ -23,12 +24,18 @@ struct BifurcationOptions {
   double parent_length = 20.0;
   double daughter_length = 20.0;
   double blend = 1.5;  // smooth-union radius at the junction
+  // A saccular aneurysm at the apex (a bifurcation aneurysm, where the parent's jet hits): a
+  // sphere of this radius on the daughters' bisector, its centre 0.7 radii beyond the apex (the
+  // point where the daughters' walls part), blended in as the tubes are. 0: none.
+  double aneurysm_radius = 0.0;
   double resolution = 0.5;
   double jitter = 0.0;
   uint64_t seed = 1;
 };
 
 TriMesh bifurcation(const BifurcationOptions& options);
+// The aneurysm's centre (with aneurysm_radius > 0).
+Vec3 aneurysm_center(const BifurcationOptions& options);
 std::array<TubeEnd, 3> bifurcation_ends(const BifurcationOptions& options);
 
 }  // namespace vesselmesh::synth
