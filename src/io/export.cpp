@@ -58,8 +58,9 @@ void write_face(const std::string& path, mesh::BoundaryPart face, double scale) 
 std::string solver_xml(const std::vector<std::string>& faces, const std::string& inlet, double scale) {
   std::string out = fmt::format(R"(<?xml version="1.0" encoding="UTF-8" ?>
 <!-- Written by 'vesselmesh export --format svfsi': a skeleton to edit (time, conditions, solver).
-     Lengths in the mesh are in units of {:g} m; density and viscosity below are SI (kg/m3, Pa s),
-     right for a mesh in metres. The inflow (m3/s, negative: into the domain) is a placeholder. -->
+     Lengths in the mesh are the volume's scaled by {:g} (metres with the default --units m for a
+     volume in mm); density and viscosity below are SI (kg/m3, Pa s), right for a mesh in metres.
+     The inflow (m3/s, negative: into the domain) is a placeholder. -->
 <svMultiPhysicsFile version="0.1">
 <GeneralSimulationParameters>
   <Continue_previous_simulation> false </Continue_previous_simulation>
