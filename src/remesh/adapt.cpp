@@ -736,8 +736,27 @@ RemeshResult adapt_to_count(const TriMesh& input, const std::vector<Sym3>& metri
 
 namespace {
 
+// A run of the count loop: the metric's scale and the count it gave.
+struct Run {
+  double scale, count;
+};
+
+// The runs that bracket the target most closely: the largest count below it and the smallest
+// at or above it, each, among equal counts, at the scale nearest the other side (null where none).
+std::pair<const Run*, const Run*> bracket(const std::vector<Run>& runs, double target) {
+  const Run* below = nullptr;
+  const Run* above = nullptr;
+  for (const Run& r : runs) {
+    if (r.count < target && (!below || r.count > below->count || (r.count == below->count && r.scale > below->scale)))
+      below = &r;
+    if (r.count >= target && (!above || r.count < above->count || (r.count == above->count && r.scale < above->scale)))
+      above = &r;
+  }
+  return {below, above};
+}
+
 // Why a count stays more than 3 % (the sizing issue's tolerance) off its target, or nothing.
-std::string count_note(const RemeshStats& s, double target, bool held, int runs) {
+std::string count_note(const RemeshStats& s, double target, bool held, const std::vector<Run>& runs) {
   const double off = s.triangles / target - 1.0;
   if (std::abs(off) <= 0.03) return {};
   const std::string head = fmt::format("{} triangles for a target of {:.0f} ({:+.1f} %)", s.triangles, target, 100.0 * off);
@@ -759,9 +778,15 @@ std::string count_note(const RemeshStats& s, double target, bool held, int runs)
                        "leaves edges of 1/sqrt(2) to sqrt(2) times the size asked alone): a count this near the input's "
                        "own is not reached by scaling; the closest run is kept",
                        head);
+  const auto [below, above] = bracket(runs, target);
+  if (below && above)
+    return fmt::format("{}: the count jumps from {:.0f} (the field scaled by {:.3g}) to {:.0f} (by {:.3g}) with nothing "
+                       "between found (an input whose edges are alike, a structured triangulation, crosses the "
+                       "remesher's band of 1/sqrt(2) to sqrt(2) times the size all at once); the closest run is kept",
+                       head, below->count, below->scale, above->count, above->scale);
   return fmt::format("{} after {} runs: the count scatters between runs at nearby scales of the field (the closest run is "
                      "kept); a slightly different target or size field lands elsewhere",
-                     head, runs);
+                     head, runs.size());
 }
 
 }  // namespace
@@ -780,20 +805,12 @@ RemeshResult fit_count(const Engine& engine, const std::vector<Sym3>& metrics, d
   // distance bound does, on thin vessels), and further steps would only coarsen the rest of the
   // field. (One such step alone is the count's scatter: carotid, uniform, no bound: 0.868 gave
   // 11526 -> 11282, then the next step reached the target.)
-  struct Run {
-    double scale, count;
-  };
   std::vector<Run> runs = {{1.0, static_cast<double>(result.stats.triangles)}};
   int weak_steps = 0;  // proportional steps in a row that moved the count little
   bool held = false;   // two such steps ended the loop
   for (int round = 0; round < max_corrections; ++round) {
     if (std::abs(result.stats.triangles / target_triangles - 1.0) <= tolerance) break;
-    const Run* below = nullptr;
-    const Run* above = nullptr;
-    for (const Run& r : runs) {
-      if (r.count < target_triangles && (!below || r.count > below->count)) below = &r;
-      if (r.count >= target_triangles && (!above || r.count < above->count)) above = &r;
-    }
+    const auto [below, above] = bracket(runs, target_triangles);
     double scale = 0.0;
     const bool proportional = !(below && above && below->count > 0.0);
     if (!proportional) {
@@ -841,7 +858,7 @@ RemeshResult fit_count(const Engine& engine, const std::vector<Sym3>& metrics, d
     }
   }
   result.stats.seconds = seconds;
-  result.count_note = count_note(result.stats, target_triangles, held, static_cast<int>(runs.size()));
+  result.count_note = count_note(result.stats, target_triangles, held, runs);
   if (!result.count_note.empty()) reporter.warning(result.count_note);
   return result;
 }

@@ -282,7 +282,20 @@ TEST(FitCount, NeverRepeatsAScale) {
   EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end());
   EXPECT_EQ(engine.scales.size(), 3u);  // 1, 2, then the interpolated one
   EXPECT_EQ(r.stats.triangles, 6000);   // the closest of 6000, 18000 and 5000
-  EXPECT_NE(r.count_note.find("scatters"), std::string::npos) << r.count_note;
+  EXPECT_NE(r.count_note.find("jumps from 6000 (the field scaled by 1) to 18000 (by 2)"), std::string::npos)
+      << r.count_note;
+  // A structured input: every edge crosses the band at once, the count a step (the pipe of
+  // regular diagonals at 0.6 mm: 1638 triangles, its own, up to a scale, 3108 beyond); the note says
+  // between which counts it jumps. Without a bracket, the count's scatter.
+  CountingEngine step{[](double s) { return s < 0.8 ? 1638 : 3108; }};
+  const RemeshResult st = fit_count(std::cref(step), identity, 2000.0);
+  EXPECT_EQ(st.stats.triangles, 1638);
+  EXPECT_NE(st.count_note.find("jumps from 1638"), std::string::npos) << st.count_note;
+  EXPECT_NE(st.count_note.find("to 3108"), std::string::npos) << st.count_note;
+  CountingEngine flat_above{[](double s) { return s < 0.5 ? 2600 : 2700; }};
+  const RemeshResult fa = fit_count(std::cref(flat_above), identity, 2000.0);
+  EXPECT_FALSE(fa.count_note.empty());
+  EXPECT_EQ(fa.count_note.find("jumps"), std::string::npos) << fa.count_note;
 }
 
 TEST(Remesh, AMetricOfAnotherSurfaceIsAnError) {
