@@ -98,11 +98,11 @@ struct MeshRun {
   int volume_points = 0, tetrahedra = 0, dofs = 0;
   double min_dihedral = 0.0;  // degrees
   double interior_size = 1.0;  // the interior's size factor its volume was made with
-  std::map<std::string, double> seconds;  // remesh, volume, flow (those of the run that made them)
-  bool reused = false;                    // loaded from an earlier run
-  std::string folder;                     // DIR/<name>
-  std::vector<post::Ring> rings;
-  std::vector<post::PointProbe> points;
+  std::map<std::string, double> seconds = {};  // remesh, volume, flow (those of the run that made them)
+  bool reused = false;                         // loaded from an earlier run
+  std::string folder = {};                     // DIR/<name>
+  std::vector<post::Ring> rings = {};
+  std::vector<post::PointProbe> points = {};
 };
 
 struct StudyResult {

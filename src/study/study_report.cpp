@@ -219,12 +219,12 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
         "asymptotic ratio GCI32 / (r21^p GCI21) is near 1 when the series is in its asymptotic range.",
         grids[0]->name, grids[1]->name, grids[2]->name, grids[0]->volume_points, grids[1]->volume_points,
         grids[2]->volume_points));
-    std::vector<std::vector<std::string>> rows;
+    std::vector<std::vector<std::string>> gci_rows;
     const auto add = [&](const std::string& what, const std::array<double, 3>& phi) {
       const GridConvergence g = grid_convergence(grids[0]->volume_points, grids[1]->volume_points,
                                                  grids[2]->volume_points, phi[0], phi[1], phi[2]);
-      rows.push_back({what, number(phi[2]), number(phi[1]), number(phi[0]), number(g.order, 3), number(g.extrapolated),
-                      uncertainty(g), number(g.asymptotic_ratio, 3), g.status});
+      gci_rows.push_back({what, number(phi[2]), number(phi[1]), number(phi[0]), number(g.order, 3),
+                          number(g.extrapolated), uncertainty(g), number(g.asymptotic_ratio, 3), g.status});
       convergence.push_back({{"quantity", what},
                              {"meshes", {grids[0]->name, grids[1]->name, grids[2]->name}},
                              {"volume_points", {grids[0]->volume_points, grids[1]->volume_points, grids[2]->volume_points}},
@@ -254,7 +254,7 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
     }
     doc.table({"quantity (Pa)", grids[2]->name, grids[1]->name, grids[0]->name + " (reference)", "order p",
                "extrapolated", "GCI_fine (or the series' spread)", "asymptotic ratio", "convergence"},
-              rows);
+              gci_rows);
 
     // Pointwise along each ring: the three profiles on a common angle (or length fraction).
     constexpr int kProfile = 360;
