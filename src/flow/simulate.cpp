@@ -520,7 +520,10 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
       const std::string fluid_file = write_result("fluid_" + name, io::VtkFormat::vtu, fluid_fields,
                                                   [&](const std::string& path) {
         if (!pieces) {
-          io::write_vtu(path, mesh, {Field::vector("velocity", ns.velocity()), Field::scalar("pressure", ns.pressure())});
+          // The volume's cells in the mesh's numbering, without the boundary faces (as the pieces
+          // under MPI): handed to VTK without copies.
+          io::write_vtu(path, mesh, {Field::vector("velocity", ns.velocity()), Field::scalar("pressure", ns.pressure())},
+                        /*boundary=*/false);
           return;
         }
         const std::vector<Vec3>& u = ns.local_velocity();

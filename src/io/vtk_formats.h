@@ -54,7 +54,10 @@ void write_vtp(const std::string& path, const TriMesh& mesh,
 // `tag` (the volume's tag for volume cells, the boundary tag for triangles), and with layer
 // data `layer` (1..N, 0 interior, -1 boundary) and `column` (the wall triangle's index among
 // the boundary triangles, -1 elsewhere); field data `tag_names` ("<tag> <name>" strings).
-void write_vtu(const std::string& path, const TetMesh& mesh, const std::vector<Field>& point_data = {});
+// Without `boundary`, the volume's cells alone (a flow result's frame: its boundary is the mesh's).
+// The points and a tetrahedral mesh's cells are handed to VTK without copies.
+void write_vtu(const std::string& path, const TetMesh& mesh, const std::vector<Field>& point_data = {},
+               bool boundary = true);
 
 // Tetrahedra alone as VTK XML UnstructuredGrid (binary, compressed, atomically), with point and
 // cell data (sizes must match): for solvers that read one element type (io/export.h).
