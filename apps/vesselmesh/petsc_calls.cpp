@@ -42,6 +42,7 @@ void abort_all(int code) {
   petsc_calls().abort_all(code);
   std::abort();  // not reached
 }
+void error_told_together(double seconds) { petsc_calls().error_told_together(seconds); }
 
 LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::string& defaults,
                            const std::string& options)

@@ -9,8 +9,6 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
-#include <thread>
 
 namespace vesselmesh::cli {
 namespace {
@@ -85,14 +83,15 @@ Command add_simulate_command(CLI::App& parent) {
             const bool first = flow::process_rank() == 0;  // under mpirun, the first process speaks
             if (flow::process_count() == 1) return run(*o, first);
             // Under mpirun an input, option or computation error is raised on every process alike
-            // (the mesh's, from the first): the first tells it at once, the others end with its code
-            // half a second later (mpirun ends every process once one has ended with an error: the
-            // first's message would race with it; no collective wait, which an error raised on
-            // one process alone would hang). Any other failure may be on one process while the
-            // others wait on it: it is told with the process's rank and every process ends at once.
+            // (the mesh's, from the first): the first tells it, then the others end with its code
+            // once it says it has (mpirun ends every process once one has ended with an error: the
+            // first's message raced with it, lost on a loaded machine after half a second's wait);
+            // 10 s at most, not a collective wait, which an error raised on some processes alone
+            // would hang. Any other failure may be on one process while the others wait on it: it
+            // is told with the process's rank and every process ends at once.
             const auto alike = [&](const std::exception& e, int code) {
               if (first) fmt::print(stderr, "vesselmesh simulate: error: {}\n", e.what());
-              else std::this_thread::sleep_for(std::chrono::milliseconds(500));
+              flow::error_told_together(10.0);
               return code;
             };
             try {

@@ -8,9 +8,11 @@
 #include <scotch.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <thread>
 #include <tuple>
 #include <type_traits>
 
@@ -179,6 +181,27 @@ void abort_all(int code) {
   std::fflush(stderr);
   MPI_Abort(PETSC_COMM_WORLD, code);
   std::abort();  // MPI_Abort does not return
+}
+
+void error_told_together(double seconds) {
+  ensure_petsc();
+  int rank = 0, size = 1;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  constexpr int kTold = 7701;  // a tag of its own
+  char word = 1;
+  if (rank == 0) {
+    std::fflush(stderr);
+    for (int r = 1; r < size; ++r) MPI_Send(&word, 1, MPI_CHAR, r, kTold, PETSC_COMM_WORLD);  // eager: no wait
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  int arrived = 0;
+  while (!arrived && std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < seconds) {
+    MPI_Iprobe(0, kTold, PETSC_COMM_WORLD, &arrived, MPI_STATUS_IGNORE);
+    if (!arrived) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (arrived) MPI_Recv(&word, 1, MPI_CHAR, 0, kTold, PETSC_COMM_WORLD, MPI_STATUS_IGNORE);
 }
 
 struct LinearSolver::Impl {

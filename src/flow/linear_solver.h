@@ -133,6 +133,11 @@ std::string scatter_from_first(const std::function<std::string(int rank)>& make)
 // Ends every process at once (MPI_Abort) with this exit code: for a failure on one process that
 // the others, waiting on it, would not see.
 [[noreturn]] void abort_all(int code);
+// An error every process raised alike, told by the first: the first (its stderr flushed) says so to
+// the others, which wait for that word, `seconds` at most (an error raised on some only must not
+// hang them), before they end with the error's code: mpirun ends every process once one has ended
+// with an error, which could cut the first's message short. One process: nothing to wait for.
+void error_told_together(double seconds);
 
 // A process's matrix values between LinearSolver::begin_assembly() and end_assembly(), in
 // PETSc's own arrays, in one of two layouts (entry_place finds an entry in either).

@@ -14,6 +14,7 @@ extern "C" __attribute__((visibility("default"))) const vesselmesh::flow::PetscC
       &partition_graph,
       &scatter_from_first,
       &abort_all,
+      &error_told_together,
       [](SparsePattern pattern, int block_size, const std::string& defaults, const std::string& options) {
         return new LinearSolver(std::move(pattern), block_size, defaults, options);
       },

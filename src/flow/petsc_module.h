@@ -15,7 +15,7 @@ inline constexpr const char* kPetscModuleFile = "libvesselmesh-petsc.so";
 
 // The module's entry points: a LinearSolver made, used and destroyed inside the module; `layout`
 // first, as in io/gmsh_module.h (raise it when this table or a type it passes changes).
-inline constexpr int kPetscCallsLayout = 14;
+inline constexpr int kPetscCallsLayout = 15;
 struct PetscCalls {
   int layout;
   int (*process_count)();
@@ -28,6 +28,7 @@ struct PetscCalls {
                                       int parts);
   std::string (*scatter_from_first)(const std::function<std::string(int rank)>& make);
   void (*abort_all)(int code);
+  void (*error_told_together)(double seconds);
   LinearSolver* (*create)(SparsePattern pattern, int block_size, const std::string& defaults,
                           const std::string& options);
   void (*destroy)(LinearSolver* solver);
