@@ -32,6 +32,30 @@ Vec3 barycentric(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& q) {
   return l / l.sum();
 }
 
+// Phong tessellation with shape factor 1/2 at weights l of corners v with normals n (zero: no
+// bulge from that corner): q + 1/2 sum_i l_i n_i n_i^T (v_i - q), q the flat point. The one formula
+// of the patches, their edges (a zero weight) and the Gauss-Newton steps.
+Vec3 phong(const std::array<Vec3, 3>& v, const std::array<Vec3, 3>& n, const Vec3& l) {
+  const Vec3 q = l[0] * v[0] + l[1] * v[1] + l[2] * v[2];
+  Vec3 s = q;
+  for (int i = 0; i < 3; ++i) s += 0.5 * l[i] * Vec3(n[i].dot(v[i] - q) * n[i]);
+  return s;
+}
+
+// Its derivatives along l1 and l2 (l0 = 1 - l1 - l2): dq/dl_k = v_k - v0, and each corner's term
+// n_i n_i^T (v_i - q) changes by -n_i n_i^T dq.
+void phong_tangents(const std::array<Vec3, 3>& v, const std::array<Vec3, 3>& n, const Vec3& l, Vec3& su, Vec3& sv) {
+  const Vec3 q = l[0] * v[0] + l[1] * v[1] + l[2] * v[2];
+  Vec3 d[3];
+  for (int i = 0; i < 3; ++i) d[i] = n[i].dot(v[i] - q) * n[i];
+  for (int k = 1; k <= 2; ++k) {
+    const Vec3 e = v[k] - v[0];
+    Vec3 ds = e + 0.5 * (d[k] - d[0]);
+    for (int i = 0; i < 3; ++i) ds -= 0.5 * l[i] * n[i].dot(e) * n[i];
+    (k == 1 ? su : sv) = ds;
+  }
+}
+
 }  // namespace
 
 SurfaceModel::SurfaceModel(const TriMesh& input, const std::vector<Sym3>& metrics, const FeatureOptions& options,
@@ -58,14 +82,13 @@ SurfaceModel::SurfaceModel(const TriMesh& input, const std::vector<Sym3>& metric
     for (int copy : features_.corner_copy[t]) copy_normals_[copy] += mesh::triangle_area_vector(input, t);
   for (Vec3& n : copy_normals_)
     if (n.squaredNorm() > 0.0) n.normalize();
+  const mesh::EdgeMap& edges = features_.edges;
   // Phong's normals: the quadric fit's (second order on irregular meshes; a face-weighted mean
   // is first order, and the patch's bulge is only as good as its normals: on a jittered coarse
   // sphere the area-weighted ones leave it a third of the facets' depth off, the fitted ones a
-  // tenth or less).
-  const mesh::EdgeMap& edges = features_.edges;
-  // The points on a crease or a label border keep the facets along it (both sides meet there);
-  // an open end's rim, with one side only, follows the surface (a coarse end's polygon becomes
-  // the vessel's section: its radius no longer the inscribed polygon's).
+  // tenth or less). The points on a crease or a label border keep the facets along it (both
+  // sides meet there); an open end's rim, with one side only, follows the surface (a coarse end's
+  // polygon becomes the vessel's section: its radius no longer the inscribed polygon's).
   if (reconstruction_ == Reconstruction::phong) {
     fitted_normals_ = analysis::vertex_normals(input);
     rigid_.assign(input.points.size(), 0);
@@ -205,12 +228,9 @@ std::array<Vec3, 3> SurfaceModel::corner_normals(int t) const {
 
 Vec3 SurfaceModel::surface_point(int t, const Vec3& l) const {
   const Triangle& f = input_.triangles[t];
-  const Vec3 q = l[0] * input_.points[f[0]] + l[1] * input_.points[f[1]] + l[2] * input_.points[f[2]];
-  if (reconstruction_ == Reconstruction::facets) return q;
-  const std::array<Vec3, 3> n = corner_normals(t);
-  Vec3 s = q;
-  for (int i = 0; i < 3; ++i) s += 0.5 * l[i] * n[i].dot(input_.points[f[i]] - q) * n[i];
-  return s;
+  const std::array<Vec3, 3> v = {input_.points[f[0]], input_.points[f[1]], input_.points[f[2]]};
+  if (reconstruction_ == Reconstruction::facets) return l[0] * v[0] + l[1] * v[1] + l[2] * v[2];
+  return phong(v, corner_normals(t), l);
 }
 
 // Gauss-Newton on |p - S(l)|^2 over the triangle's barycentric coordinates (l1, l2 free, l0 =
@@ -219,34 +239,15 @@ Vec3 SurfaceModel::surface_point(int t, const Vec3& l) const {
 // steps converge. A sliver's ill-conditioned steps stop it where it is.
 SurfaceModel::OnPatch SurfaceModel::onto_patch(const Vec3& p, const Nearest& facet) const {
   const Triangle& f = input_.triangles[facet.triangle];
-  const Vec3 v[3] = {input_.points[f[0]], input_.points[f[1]], input_.points[f[2]]};
+  const std::array<Vec3, 3> v = {input_.points[f[0]], input_.points[f[1]], input_.points[f[2]]};
   Vec3 l = barycentric(v[0], v[1], v[2], facet.point);
   if (reconstruction_ == Reconstruction::facets) return {facet.point, l};
   const std::array<Vec3, 3> n = corner_normals(facet.triangle);
   if (n[0].squaredNorm() + n[1].squaredNorm() + n[2].squaredNorm() == 0.0) return {facet.point, l};
-  auto evaluate = [&](const Vec3& b, Vec3* du, Vec3* dv) {
-    const Vec3 q = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
-    Vec3 s = q;
-    Vec3 d[3];  // each corner's displacement of q, n_i n_i^T (v_i - q)
-    for (int i = 0; i < 3; ++i) {
-      d[i] = n[i].dot(v[i] - q) * n[i];
-      s += 0.5 * b[i] * d[i];
-    }
-    if (du) {
-      // dq/du = v1 - v0 (u = l1), dq/dv = v2 - v0; d d_i / dx = -n_i n_i^T dq/dx.
-      for (int k = 1; k <= 2; ++k) {
-        const Vec3 e = v[k] - v[0];
-        Vec3 ds = e + 0.5 * (d[k] - d[0]);
-        for (int i = 0; i < 3; ++i) ds -= 0.5 * b[i] * n[i].dot(e) * n[i];
-        *(k == 1 ? du : dv) = ds;
-      }
-    }
-    return s;
-  };
-  Vec3 s = evaluate(l, nullptr, nullptr);
+  Vec3 s = phong(v, n, l);
   for (int it = 0; it < 4; ++it) {
     Vec3 su, sv;
-    evaluate(l, &su, &sv);
+    phong_tangents(v, n, l, su, sv);
     const Vec3 r = p - s;
     const double a = su.dot(su), b = su.dot(sv), c = sv.dot(sv);
     const double det = a * c - b * b;
@@ -256,7 +257,7 @@ SurfaceModel::OnPatch SurfaceModel::onto_patch(const Vec3& p, const Nearest& fac
     Vec3 next(l[0] - du - dv, l[1] + du, l[2] + dv);
     next = next.cwiseMax(0.0);
     next /= next.sum();
-    const Vec3 moved = evaluate(next, nullptr, nullptr);
+    const Vec3 moved = phong(v, n, next);
     if ((p - moved).squaredNorm() > r.squaredNorm()) break;  // clamped against the triangle's edge
     const bool settled = (moved - s).squaredNorm() <= 1e-24 * (a + c);
     l = next;
@@ -325,6 +326,8 @@ Projection SurfaceModel::project_on_curve(int curve, const Vec3& p) const {
   if (reconstruction_ == Reconstruction::phong) {
     // On the smooth surface's edge between a and b (what the patch of the triangle on it gives
     // there: only a's and b's normals count on an edge); zero on a crease or label border.
+    // (phong() on the edge, l = (1 - t, t), written out: the same point to the last bit as the
+    // tests' figures were measured with.)
     const Vec3 q = hit.point;
     const Vec3 na = rigid_[a] ? Vec3::Zero() : fitted_normals_[a], nb = rigid_[b] ? Vec3::Zero() : fitted_normals_[b];
     out.point += 0.5 * ((1.0 - hit.t) * na.dot(input_.points[a] - q) * na + hit.t * nb.dot(input_.points[b] - q) * nb);
