@@ -12,6 +12,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vesselmesh::flow {
@@ -76,35 +77,38 @@ inline std::string saddle_point_options() {
          "-fieldsplit_p_pc_hypre_boomeramg_coarsen_type HMIS -fieldsplit_p_pc_hypre_boomeramg_interp_type ext+i "
          "-fieldsplit_p_pc_hypre_boomeramg_strong_threshold 0.6 -fieldsplit_p_pc_hypre_boomeramg_agg_nl 1";
 }
-// Time steps, whose mass term makes the velocity block diagonally strong: the same Schur
-// field split, its velocity block by SOR (PETSc's: local to each process under MPI), which
-// costs less to build and apply than ILU and needs as few iterations here. Measured on the
-// pipe (R 2, L 20 mm, 4 layers; bench/flow_scaling.sh), seconds a step per million unknowns
-// and iterations: 36k unknowns 2.9-3.1 (4-9), 86k 3.5-3.8, 220k 4.1-4.7, 420k 3.8-4.1 (3-7), two
-// runs; the ILU of the whole system it replaces took 6.4-7.4 and 12-57 iterations below 200k (its
-// iterations grow with the mesh), the split with ILU on the velocity 4.0 at 420k.
-// FGMRES restarts after 30 iterations: a time step takes under 10, and the vectors of a longer
-// solve would stay allocated (263 MB less peak memory at 420k unknowns, for 71 iterations of the
-// Stokes start instead of 66). FGMRES keeps two vectors an iteration, GMRES one, but GMRES
-// preconditioned on the right applies the preconditioner once more at the end of a solve: a
-// tenth of a time step's cost at 3-8 iterations (1.62 s a step against 1.86-1.92 s at 420k).
+// Time steps, whose mass term makes the velocity block diagonally strong: the same Schur field
+// split, its velocity block by point-block Jacobi (the inverse of each point's 3 x 3 diagonal block:
+// local to each process, nothing to sweep), which takes about twice SOR's iterations at a fraction
+// of their cost. On the 420k-unknown pipe (bench/flow_scaling.sh's, dt 1 ms, 18 steps, the
+// preconditioner reused) the solve took 0.16 s a step against SOR's 0.24 (2-4 iterations against
+// 4-7 once settled); at dt 10 ms (CFL 36) 0.44-1.6 s against 0.56-2.0 s, at 50 ms (CFL 180) as long.
+// SOR's sweeps replaced ILU of the whole system (6.4-7.4 s a step per million unknowns, iterations
+// growing with the mesh) before. FGMRES restarts after 10 iterations (a time step settles at under
+// 10; its two vectors an iteration are held up to the restart: 626 MB peak at 420k against 699 with
+// 30); GMRES preconditioned on the right keeps one an iteration but applies the preconditioner once
+// more at the end of each solve.
 inline std::string time_step_options() {
-  return "-ksp_type fgmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 30 "
+  return "-ksp_type fgmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 10 "
          "-pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full "
          "-pc_fieldsplit_schur_precondition user "
-         "-fieldsplit_u_ksp_type preonly -fieldsplit_u_pc_type sor "
+         "-fieldsplit_u_ksp_type preonly -fieldsplit_u_pc_type pbjacobi "
          "-fieldsplit_p_ksp_type preonly -fieldsplit_p_pc_type hypre -fieldsplit_p_pc_hypre_type boomeramg "
          "-fieldsplit_p_pc_hypre_boomeramg_coarsen_type HMIS -fieldsplit_p_pc_hypre_boomeramg_interp_type ext+i "
          "-fieldsplit_p_pc_hypre_boomeramg_strong_threshold 0.6 -fieldsplit_p_pc_hypre_boomeramg_agg_nl 1";
 }
-// The Stokes start of an unsteady run (a solver of its own, gone before the time steps): the time
-// steps' split, with GMRES on the right, whose one vector an iteration (FGMRES: two) matters over
-// its 71 iterations at 420k unknowns (105 MB less peak memory) and whose one more application of
-// the preconditioner does not.
+// The Stokes start of an unsteady run (a solver of its own, gone before the time steps): no mass
+// term, so its velocity block by SOR (PETSc's: local to each process under MPI; point-block Jacobi
+// would take many times the iterations on the viscous block), with GMRES on the right, whose one
+// vector an iteration (FGMRES: two) matters over its 71 iterations at 420k unknowns (105 MB less
+// peak memory) and whose one more application of the preconditioner does not; restarted after 30.
 inline std::string stokes_start_options() {
   std::string options = time_step_options();
-  const std::string krylov = "-ksp_type fgmres";
-  return options.replace(options.find(krylov), krylov.size(), "-ksp_type gmres -ksp_pc_side right");
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"-ksp_type fgmres", "-ksp_type gmres -ksp_pc_side right"},
+                                 {"-ksp_gmres_restart 10", "-ksp_gmres_restart 30"},
+                                 {"-fieldsplit_u_pc_type pbjacobi", "-fieldsplit_u_pc_type sor"}})
+    options.replace(options.find(from), from.size(), to);
+  return options;
 }
 
 // The number of MPI processes this program runs on and this one's rank (start PETSc and MPI

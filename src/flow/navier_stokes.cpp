@@ -88,9 +88,15 @@ struct NavierStokes::Impl {
   }
   // Node graph of the owned points (sorted global neighbours, self included) and each cell's
   // positions in it: for its corner a (an owned point) and corner b, b's place among a's
-  // neighbours (node_start[a] + it is b's slot; 0 where a is not owned).
+  // neighbours (node_start[a] + it is b's slot; 0 where a is not owned), in a byte: kept when
+  // every row has at most 256 points (a tetrahedral mesh's have 10-40: 9 MB at 420k unknowns
+  // where 16 bits took 18), else empty and searched for (cell_slot).
   std::vector<int> node_start, node_columns;
-  std::vector<std::array<std::uint16_t, 16>> tet_slots;
+  std::vector<std::array<std::uint8_t, 16>> tet_slots;
+  int cell_slot(size_t e, int a, int b) const {
+    const Tet& t4 = tets[e];
+    return tet_slots.empty() ? slot(t4[a], t4[b]) : node_start[t4[a]] + tet_slots[e][a * 4 + b];
+  }
   // The assembly's threads: the owned points split into `threads` consecutive ranges of about
   // equal matrix entries (chunk k: chunk_begin[k] .. chunk_begin[k + 1] - 1), and per range the
   // cells with a point in it, in increasing order (empty for one range). A thread adds a cell's
@@ -220,7 +226,6 @@ void NavierStokes::Impl::build(MeshPart part) {
     list.erase(std::unique(list.begin(), list.end()), list.end());
     if (list.empty()) list.push_back(local_global[a]);  // a point no tetrahedron uses keeps its own row
     node_start[a + 1] = node_start[a] + static_cast<int>(list.size());
-    VM_CHECK(list.size() <= 65536, "a point with more than 65536 neighbours (tet_slots holds 16 bits)");
   }
   node_columns.reserve(node_start[owned]);
   for (auto& list : adjacency) {
@@ -237,12 +242,16 @@ void NavierStokes::Impl::build(MeshPart part) {
     own_start[a + 1] = own_start[a] + own;
     other_start[a + 1] = other_start[a] + other;
   }
-  tet_slots.resize(tets.size());
-  for (size_t e = 0; e < tets.size(); ++e)
-    for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b)
-        tet_slots[e][a * 4 + b] =
-            owns(tets[e][a]) ? static_cast<std::uint16_t>(slot(tets[e][a], tets[e][b]) - node_start[tets[e][a]]) : 0;
+  int widest = 0;
+  for (int a = 0; a < owned; ++a) widest = std::max(widest, node_start[a + 1] - node_start[a]);
+  if (widest <= 256) {
+    tet_slots.resize(tets.size());
+    for (size_t e = 0; e < tets.size(); ++e)
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b)
+          tet_slots[e][a * 4 + b] =
+              owns(tets[e][a]) ? static_cast<std::uint8_t>(slot(tets[e][a], tets[e][b]) - node_start[tets[e][a]]) : 0;
+  }
   split_for_threads();
 }
 
@@ -724,7 +733,7 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
         }
         rhs[row] += F[4 * a + i];
         for (int b = 0; b < 4; ++b) {
-          const EntryPlace place_b = entry(na, i, node_start[na] + tet_slots[e][a * 4 + b]);
+          const EntryPlace place_b = entry(na, i, cell_slot(e, a, b));
           const int nb = t4[b];
           for (int j = 0; j < kBlock; ++j) {
             const int column = kBlock * nb + j;

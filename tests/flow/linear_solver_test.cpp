@@ -199,65 +199,104 @@ TEST(LinearSolver, FieldSplitBlocksSolveAsTheOneMatrix) {
   for (int r = 0; r < 4 * n; ++r) EXPECT_NEAR(x_direct[r], exact[r], 1e-10) << "row " << r;
 }
 
-// The caller's Schur preconditioning matrix (MatrixValues::schur_own, the flow's default: options
-// with -pc_fieldsplit_schur_precondition user) preconditions the Schur complement. A system whose
-// Schur complement A11 - A10 A00^-1 A01 lies on the pattern (a diagonal A00, one-sided differences
-// in A10 and A01): handed it, the split with exact inner solves is exact and converges at once; with
-// nothing added (the pressure block alone) it iterates. PETSc's selfp makes its own (no array of ours).
-TEST(LinearSolver, SchurPreconditioningMatrixOfTheCallersServes) {
-  const int n = 80;
-  const SparsePattern pattern = line_points(n);
-  const auto divergence = [](int a, int k, int j) { return (j + 1) * (k == a ? 1.0 : k == a + 1 ? -1.0 : 0.0); };
-  const auto value = [&](int a, int i, int b, int j) {
-    if (i < 3 && j < 3) return a == b && i == j ? 4.0 + i : 0.0;
-    if (i < 3) return -divergence(b, a, i);  // the gradient: minus the divergence's transpose
-    if (j < 3) return divergence(a, b, j);
-    return 0.1 * (a == b ? 2.0 : -1.0);
-  };
+namespace {
+
+// A saddle point system of points on a line whose Schur complement A11 - A10 A00^-1 A01 lies on the
+// pattern: a diagonal velocity block (`scale` (4 + i)), one-sided differences in the divergence A10
+// and the gradient A01 (minus its transpose), a pressure Laplacian in A11; its value at point a's
+// component i, point b's component j.
+double diagonal_saddle(double scale, int a, int i, int b, int j) {
+  const auto divergence = [](int at, int k, int c) { return (c + 1) * (k == at ? 1.0 : k == at + 1 ? -1.0 : 0.0); };
+  if (i < 3 && j < 3) return a == b && i == j ? scale * (4.0 + i) : 0.0;
+  if (i < 3) return -divergence(b, a, i);
+  if (j < 3) return divergence(a, b, j);
+  return 0.1 * (a == b ? 2.0 : -1.0);
+}
+
+// Assembles diagonal_saddle into `solver` (and, when `add_schur`, the Schur complement's own values into
+// its preconditioning matrix: -A10 A00^-1 A01 at (a, c), over the velocity points next to both),
+// solves it for a known solution from zero and checks the answer.
+SolveStats solve_diagonal_saddle(LinearSolver& solver, const SparsePattern& pattern, double scale, bool add_schur) {
+  const int n = pattern.rows;
   std::vector<double> values;
   for (int a = 0; a < n; ++a)
     for (int i = 0; i < 4; ++i)
       for (int k = pattern.row_start[a]; k < pattern.row_start[a + 1]; ++k)
-        for (int j = 0; j < 4; ++j) values.push_back(value(a, i, pattern.columns[k], j));
+        for (int j = 0; j < 4; ++j) values.push_back(diagonal_saddle(scale, a, i, pattern.columns[k], j));
   std::vector<double> exact, b;
   saddle_solution(pattern, values, exact, b);
-  // -A10 A00^-1 A01 at (a, b), over the velocity points k next to both.
   const auto schur = [&](int a, int c) {
     double sum = 0.0;
     for (int k = std::max(0, std::max(a, c) - 1); k <= std::min(n - 1, std::min(a, c) + 1); ++k)
-      for (int j = 0; j < 3; ++j) sum -= value(a, 3, k, j) * value(k, j, c, 3) / value(k, j, k, j);
+      for (int j = 0; j < 3; ++j)
+        sum -= diagonal_saddle(scale, a, 3, k, j) * diagonal_saddle(scale, k, j, c, 3) / diagonal_saddle(scale, k, j, k, j);
     return sum;
   };
-  const std::string options = "-ksp_rtol 1e-10 -fieldsplit_u_pc_type lu -fieldsplit_p_pc_type lu";
-  LinearSolver selfp(pattern, 4, time_step_options(), options + " -pc_fieldsplit_schur_precondition selfp");
+  const MatrixValues m = solver.begin_assembly();
+  EXPECT_NE(m.schur_own, nullptr);
+  for (int a = 0; a < n; ++a) {
+    const int degree = pattern.row_start[a + 1] - pattern.row_start[a];
+    for (int i = 0; i < 4; ++i)
+      for (int k = pattern.row_start[a]; k < pattern.row_start[a + 1]; ++k) {
+        const EntryPlace at = entry_place(m, 4, true, pattern.row_start[a], degree, i, k - pattern.row_start[a]);
+        for (int j = 0; j < 4; ++j) at[j] = diagonal_saddle(scale, a, i, pattern.columns[k], j);
+        EXPECT_EQ(at.schur != nullptr, i == 3);
+        if (add_schur && at.schur) *at.schur = schur(a, pattern.columns[k]);
+      }
+  }
+  solver.end_assembly();
+  std::vector<double> x(4 * n, 0.0);
+  const SolveStats stats = solver.solve_assembled(b, x);
+  EXPECT_TRUE(stats.converged) << stats.reason;
+  for (int r = 0; r < 4 * n; ++r) EXPECT_NEAR(x[r], exact[r], 1e-8) << "row " << r;
+  return stats;
+}
+
+// Exact inner solves: LU of the velocity block and of the Schur complement's preconditioning matrix.
+const std::string kExactSplit = "-ksp_rtol 1e-10 -fieldsplit_u_pc_type lu -fieldsplit_p_pc_type lu";
+
+}  // namespace
+
+// The caller's Schur preconditioning matrix (MatrixValues::schur_own, the flow's default: options
+// with -pc_fieldsplit_schur_precondition user) preconditions the Schur complement: handed the
+// complement itself, the split with exact inner solves is exact and converges at once; with nothing
+// added (the pressure block alone) it iterates. PETSc's selfp makes its own (no array of ours).
+TEST(LinearSolver, SchurPreconditioningMatrixOfTheCallersServes) {
+  const SparsePattern pattern = line_points(80);
+  LinearSolver selfp(pattern, 4, time_step_options(), kExactSplit + " -pc_fieldsplit_schur_precondition selfp");
   EXPECT_EQ(selfp.begin_assembly().schur_own, nullptr);
   selfp.end_assembly();
   const auto solve = [&](bool add_schur) {
-    LinearSolver solver(pattern, 4, time_step_options(), options);
-    const MatrixValues m = solver.begin_assembly();
-    EXPECT_NE(m.schur_own, nullptr);
-    for (int a = 0; a < n; ++a) {
-      const int degree = pattern.row_start[a + 1] - pattern.row_start[a];
-      for (int i = 0; i < 4; ++i)
-        for (int k = pattern.row_start[a]; k < pattern.row_start[a + 1]; ++k) {
-          const EntryPlace at = entry_place(m, 4, true, pattern.row_start[a], degree, i, k - pattern.row_start[a]);
-          for (int j = 0; j < 4; ++j) at[j] = value(a, i, pattern.columns[k], j);
-          EXPECT_EQ(at.schur != nullptr, i == 3);
-          if (add_schur && at.schur) *at.schur = schur(a, pattern.columns[k]);
-        }
-    }
-    solver.end_assembly();
-    std::vector<double> x(4 * n, 0.0);
-    const SolveStats stats = solver.solve_assembled(b, x);
-    EXPECT_TRUE(stats.converged) << stats.reason;
-    for (int r = 0; r < 4 * n; ++r) EXPECT_NEAR(x[r], exact[r], 1e-8) << "row " << r;
-    return stats.iterations;
+    LinearSolver solver(pattern, 4, time_step_options(), kExactSplit);
+    return solve_diagonal_saddle(solver, pattern, 1.0, add_schur).iterations;
   };
   const int with_schur = solve(true), pressure_block = solve(false);
   EXPECT_LE(with_schur, 2);
   EXPECT_GE(pressure_block, with_schur + 2);
   std::printf("iterations: %d with the Schur complement, %d with the pressure block alone\n", with_schur,
               pressure_block);
+}
+
+// Reuse keeps the preconditioners nested in the field split too (the velocity block's and the Schur
+// complement's, whose matrices the assembly changed as well): the system's velocity block scaled by
+// 1.3, the split's exact inner solves of the system before no longer are, and the solve iterates;
+// once a rebuild is asked for, they are built for the new system and the split is exact again.
+TEST(LinearSolver, ReuseKeepsTheFieldSplitsInnerPreconditioners) {
+  const SparsePattern pattern = line_points(80);
+  LinearSolver solver(pattern, 4, time_step_options(), kExactSplit);
+  solver.reuse_preconditioner(true);
+  const SolveStats first = solve_diagonal_saddle(solver, pattern, 1.0, true);
+  EXPECT_TRUE(first.preconditioner_built);
+  EXPECT_LE(first.iterations, 2);
+  const SolveStats kept = solve_diagonal_saddle(solver, pattern, 1.3, true);
+  EXPECT_FALSE(kept.preconditioner_built);
+  EXPECT_GT(kept.iterations, 2);
+  solver.rebuild_preconditioner();
+  const SolveStats rebuilt = solve_diagonal_saddle(solver, pattern, 1.3, true);
+  EXPECT_TRUE(rebuilt.preconditioner_built);
+  EXPECT_LE(rebuilt.iterations, 2);
+  std::printf("iterations: %d built, %d with the last system's inner solves, %d rebuilt\n", first.iterations,
+              kept.iterations, rebuilt.iterations);
 }
 
 }  // namespace

@@ -27,6 +27,7 @@
 #include <map>
 #include <numeric>
 #include <random>
+#include <set>
 
 namespace vesselmesh::flow {
 namespace {
@@ -391,6 +392,71 @@ TEST(NavierStokes, TheSameFlowWhateverThePointNumbering) {
   }
 }
 
+// A pipe (radius 1 mm, 4 mm long) of wedges around its axis: `around` points on each of 9 rings,
+// each wedge (an axis segment and a ring edge at both ends) a prism cut into tetrahedra, so that an
+// axis point neighbours three rings' points; tagged inlet (z = 0), outlet_1 and wall.
+TetMesh star_pipe(int around) {
+  const int rings = 9;
+  TetMesh m;
+  for (int k = 0; k < rings; ++k) m.points.emplace_back(0.0, 0.0, 0.5 * k);
+  const auto ring = [&](int k, int j) { return rings + k * around + (j % around); };
+  for (int k = 0; k < rings; ++k)
+    for (int j = 0; j < around; ++j) {
+      const double angle = 2.0 * M_PI * j / around;
+      m.points.emplace_back(std::cos(angle), std::sin(angle), 0.5 * k);
+    }
+  m.tag_names = {{1, "inlet"}, {2, "outlet_1"}, {3, "wall"}};
+  for (int k = 0; k + 1 < rings; ++k)
+    for (int j = 0; j < around; ++j) {
+      m.prisms.push_back({k, ring(k, j + 1), ring(k, j), k + 1, ring(k + 1, j + 1), ring(k + 1, j)});
+      // The wall's quadrilateral, cut as the prism's side is (along the diagonal through its least point).
+      const int q0 = ring(k, j), q1 = ring(k, j + 1), q2 = ring(k + 1, j + 1), q3 = ring(k + 1, j);
+      const std::vector<Triangle> halves = std::min(q0, q1) == q0 ? std::vector<Triangle>{{q0, q1, q2}, {q0, q2, q3}}
+                                                                  : std::vector<Triangle>{{q0, q1, q3}, {q1, q2, q3}};
+      for (const Triangle& t : halves) {
+        m.boundary.push_back(t);
+        m.boundary_tags.push_back(3);
+      }
+    }
+  for (int j = 0; j < around; ++j) {
+    m.boundary.push_back({0, ring(0, j + 1), ring(0, j)});
+    m.boundary_tags.push_back(1);
+    m.boundary.push_back({rings - 1, ring(rings - 1, j), ring(rings - 1, j + 1)});
+    m.boundary_tags.push_back(2);
+  }
+  return m;
+}
+
+// The assembly finds each cell's entries by their places in its points' rows, kept in a byte a
+// place while every row has at most 256 points; where one has more (an axis point of star_pipe(144):
+// 291), it searches the rows instead. The flow there balances: what enters leaves (the continuity
+// rows summed: exact to the solver's tolerance, and only if every entry went to its place), and it
+// goes down the axis.
+TEST(NavierStokes, RowsOfMoreThan256PointsAreAssembledToo) {
+  const TetMesh mesh = star_pipe(144);
+  for (const Tet& t4 : mesh::all_tetrahedra(mesh)) ASSERT_GT(mesh::tet_volume6(mesh, t4), 0.0);
+  std::map<int, std::set<int>> neighbours;
+  for (const Tet& t4 : mesh::all_tetrahedra(mesh))
+    for (int a : t4) neighbours[a].insert(t4.begin(), t4.end());
+  EXPECT_GT(neighbours[4].size(), 256u);
+  const double Q = 0.05;  // mL/s
+  const FlowCase fc = pipe_case("steady = true\nsteady_tolerance = 1e-10",
+                                fmt::format("flow = {}\n[solver]\npetsc_options = \"-ksp_rtol 1e-10\"", Q), "case.toml");
+  NavierStokes ns(mesh, fc);
+  const StepReport report = ns.solve_steady();
+  EXPECT_LT(report.change, 1e-8);
+  double in = 0.0, out = 0.0;
+  for (const BoundaryFlow& f : ns.boundary_flows()) {
+    if (f.tag == "inlet") in = f.flux;
+    if (f.tag == "outlet_1") out = f.flux;
+  }
+  EXPECT_NEAR(in, -Q * 1e-6, 1e-3 * Q * 1e-6);
+  EXPECT_NEAR(out, -in, 1e-6 * std::abs(in));
+  for (int k = 1; k < 8; ++k) EXPECT_GT(ns.velocity()[k].z(), 0.0) << "axis point " << k;
+  std::printf("star pipe: an axis point's row of %zu points; inlet %.6e, outlet %.6e m3/s\n", neighbours[4].size(), in,
+              out);
+}
+
 // The assembly's threads ([solver] threads) add each row's cell terms in the cells' order: the
 // flow on 1, 2 and 3 threads is the same to the bit, for time steps (a Newton-free Oseen system)
 // and for Newton's steady iterations (the stabilization's Jacobian, the line search's residuals).
@@ -423,10 +489,12 @@ TEST(NavierStokes, TheSameFlowToTheBitWhateverTheThreads) {
   }
 }
 
-// Time steps' linear iterations do not grow with the mesh (the Schur field split, SOR on the
-// velocity, AMG on the pressure): the pipe at two resolutions, 2.6 times the points, the same
-// iterations within two. (ILU of the whole system, the default before, took 41 then 54 on the
-// second step of the 36k- and 86k-unknown pipes.)
+// Time steps' linear iterations do not grow with the mesh (the Schur field split, point-block
+// Jacobi on the velocity, AMG on the pressure): the pipe at two resolutions, 2.6 times the points,
+// the same iterations within two, and at most 30 (25 and 20 from the Stokes start, which SOR on the
+// velocity took in 15: point-block Jacobi iterates about twice as often, at a fraction of the cost).
+// (ILU of the whole system, the default before, took 41 then 54 on the second step of the 36k- and
+// 86k-unknown pipes.)
 TEST(NavierStokes, TimeStepIterationsStayFlatAsTheMeshGrows) {
   const FlowCase fc = pipe_case("dt = 0.001\nend = 0.003", "profile = \"parabolic\"\nflow = 1.0", "case.toml");
   int iterations[2] = {0, 0}, points[2] = {0, 0};
@@ -441,7 +509,7 @@ TEST(NavierStokes, TimeStepIterationsStayFlatAsTheMeshGrows) {
   }
   EXPECT_GT(points[1], 2 * points[0]);
   EXPECT_LE(iterations[1], iterations[0] + 2);
-  EXPECT_LE(iterations[1], 15);
+  EXPECT_LE(iterations[1], 30);
 }
 
 // steady_method = "pseudo-transient": pseudo time steps from Stokes, then a confirming Picard
