@@ -210,7 +210,11 @@ TEST(NavierStokes, PoiseuilleInAnExtendedPipeAsInAnEquallyLongOne) {
 // They differ by the stabilization's time term alone (tau_M's 4 / dt^2, which the steady equations
 // do not have): the difference falls as dt^-2 (measured, largest velocity difference over the peak:
 // 7.5e-4 at dt = 0.02 s, 1.2e-4 at 0.05, 3.1e-5 at 0.1; the linear solver's tolerance, 1e-6 or
-// 1e-10, changes nothing) and is under 1e-4 from dt = 0.1 s.
+// 1e-10, changes nothing) and is under 1e-4 from dt = 0.1 s. Settled: the last step's change under
+// 1e-5, the linear solver's tolerance (1e-6 of the right-hand side) at work — each step starts from
+// the velocity extrapolated from the last two (2 u^n - u^(n-1)), so the solver's own error
+// (a few 1e-6) is what changes once the flow has settled (from u^n, as before, a settled step's
+// residual was under the tolerance and the change fell to zero).
 TEST(NavierStokes, SteadyFlowIsWhereALongUnsteadyRunSettles) {
   const double R = 2.0, Q = 2.0;
   const TetMesh mesh = bend_volume(R);
@@ -228,7 +232,7 @@ TEST(NavierStokes, SteadyFlowIsWhereALongUnsteadyRunSettles) {
     unsteady.start_from_stokes();
     double change = 1.0;
     for (int k = 0; k < steps; ++k) change = unsteady.step().change;
-    EXPECT_LT(change, 1e-7) << "settled, dt " << dt;
+    EXPECT_LT(change, 1e-5) << "settled, dt " << dt;
     double worst = 0.0, worst_p = 0.0, p_scale = 0.0;
     for (int a = 0; a < mesh.num_points(); ++a) {
       worst = std::max(worst, (unsteady.velocity()[a] - steady.velocity()[a]).norm());
