@@ -205,6 +205,16 @@ struct NavierStokes::Impl {
                     const std::vector<Vec3>* guess = nullptr);
   bool direct_now = false;  // a steady solve went to the direct solver: its next iterations too
   double cfl(const std::vector<Vec3>& advect, double dt) const;
+  // A cell's CFL number: its mean velocity over its least height (1 over its largest barycentric gradient) times dt.
+  static double cell_cfl(const std::array<Vec3, 4>& g, const Vec3& mean, double dt) {
+    double largest = 0.0;
+    for (const Vec3& gradient : g) largest = std::max(largest, gradient.norm());
+    return mean.norm() * dt * largest;
+  }
+  // Per assembly chunk, the largest cell CFL number of the last assembly with a time step (its
+  // convecting velocity; 0 for a steady one), and their largest over the chunks and processes.
+  std::vector<double> chunk_cfl;
+  double assembled_cfl() const;
   // x: the state (velocity, pressure) per local point, the solver's interleaved rows.
   std::vector<double> state_rows(const std::vector<Vec3>& velocity, const std::vector<double>& pressure) const;
   // The steady residual ||A(w) w - b|| / ||b|| at the state `w` (rows as x's; the system
@@ -593,11 +603,15 @@ double NavierStokes::Impl::cfl(const std::vector<Vec3>& advect, double dt) const
   for (size_t e = 0; e < tets.size(); ++e) {
     const Tet& t4 = tets[e];
     const Vec3 mean = 0.25 * (advect[t4[0]] + advect[t4[1]] + advect[t4[2]] + advect[t4[3]]);
-    double volume = 0.0, largest = 0.0;  // the least height: 1 over the largest gradient
-    for (const Vec3& g : cell_gradients(e, volume)) largest = std::max(largest, g.norm());
-    worst = std::max(worst, mean.norm() * dt * largest);
+    double volume = 0.0;
+    worst = std::max(worst, cell_cfl(cell_gradients(e, volume), mean, dt));
   }
   const std::vector<double> all = gather_all(worst);
+  return *std::max_element(all.begin(), all.end());
+}
+
+double NavierStokes::Impl::assembled_cfl() const {
+  const std::vector<double> all = gather_all(*std::max_element(chunk_cfl.begin(), chunk_cfl.end()));
   return *std::max_element(all.begin(), all.end());
 }
 
@@ -648,7 +662,10 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
 
   // The cells' systems, added to the rows of the owned points in [lo, hi) (a chunk of the
   // threads' split, chunk_cells): each row's in the cells' order, whatever the chunk.
-  const auto add_cell = [&](size_t e, int lo, int hi) {
+  const int chunks = static_cast<int>(chunk_begin.size()) - 1;
+  chunk_cfl.assign(static_cast<size_t>(chunks), 0.0);
+  // (k: the chunk, whose CFL number the cell's may raise.)
+  const auto add_cell = [&](size_t e, int lo, int hi, int k) {
     double K[16][16];
     double F[16];
     double S[4][4];  // the Schur complement's preconditioning matrix (a weighted pressure Laplacian)
@@ -675,6 +692,7 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
     }
     ubar *= 0.25;
     hbar *= 0.25;
+    if (dt > 0.0) chunk_cfl[static_cast<size_t>(k)] = std::max(chunk_cfl[static_cast<size_t>(k)], cell_cfl(g, ubar, dt));
     Eigen::Matrix3d G = Eigen::Matrix3d::Zero();
     for (int a = 0; a < 4; ++a) G += g[a] * g[a].transpose();
     const double tau_m =
@@ -806,12 +824,11 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
       }
     }
   };
-  const int chunks = static_cast<int>(chunk_begin.size()) - 1;
   const auto add_chunk = [&](int k) {
     if (chunks == 1)
-      for (size_t e = 0; e < tets.size(); ++e) add_cell(e, 0, owned);
+      for (size_t e = 0; e < tets.size(); ++e) add_cell(e, 0, owned, 0);
     else
-      for (int e : chunk_cells[k]) add_cell(static_cast<size_t>(e), chunk_begin[k], chunk_begin[k + 1]);
+      for (int e : chunk_cells[k]) add_cell(static_cast<size_t>(e), chunk_begin[k], chunk_begin[k + 1], k);
   };
   if (chunks == 1) add_chunk(0);
   else arena->execute([&] { tbb::parallel_for(0, chunks, add_chunk); });
@@ -986,7 +1003,6 @@ StepReport NavierStokes::step() {
   }
   s.update_resistance(dt);
   s.set_dirichlet(t_next);
-  report.max_cfl = s.cfl(advect, dt);
   report.time = t_next;
 
   std::vector<Vec3> next = s.u;
@@ -995,6 +1011,7 @@ StepReport NavierStokes::step() {
     const auto assembly = Clock::now();
     s.assemble(advect, history, alpha0 / dt, dt);
     report.assembly_seconds += seconds_since(assembly);
+    if (iteration == 0) report.max_cfl = s.assembled_cfl();  // at the extrapolated velocity, as the step convects
     // From the velocity extrapolated to the new time (the convecting one: 2 u^n - u^(n-1) after the
     // first step), whose residual is O(dt^2) where the last step's is O(dt).
     s.solve_system(report, fmt::format("step {} (t = {:.6g} s)", report.step, t_next), false, &advect);
