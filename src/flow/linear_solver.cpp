@@ -255,7 +255,9 @@ struct LinearSolver::Impl {
   VecScatter ghosts = nullptr;  // MPI: the solution's ghost rows to this process
   Vec ghost_values = nullptr;
   bool reuse = false;
-  int built_iterations = -1;  // iterations of the last solve that built the preconditioner; -1: build next
+  // The fewest iterations of a solve with the current preconditioner (its building solve's or a later one's);
+  // -1: build it next.
+  int least_iterations = -1;
   bool solved = false;  // the iterative solver has solved (its preconditioner set up) once
   int last_iterations = 0;
   // The assembled system's right-hand side and x's own rows into PETSc's vectors, checked: the
@@ -716,7 +718,7 @@ SolveStats LinearSolver::solve_assembled_direct(const std::vector<double>& rhs, 
   stats.iterations = static_cast<int>(std::max<PetscInt>(direct_iterations, 1));
   stats.converged = reason > 0;
   stats.reason = KSPConvergedReasons[reason];
-  s.built_iterations = -1;  // the iterative solver's preconditioner is built anew next time
+  s.least_iterations = -1;  // the iterative solver's preconditioner is built anew next time
   return stats;
 }
 
@@ -743,8 +745,8 @@ SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::ve
   // that built it; cap the reusing solve at twice that, and repeat it with a new preconditioner
   // if it fails.
   const int reuse_limit =
-      static_cast<int>(kReuseGrowth * std::max(s.built_iterations, 0)) + kReuseSlack;
-  const bool reuse = s.reuse && s.built_iterations >= 0 && s.last_iterations <= reuse_limit;
+      static_cast<int>(kReuseGrowth * std::max(s.least_iterations, 0)) + kReuseSlack;
+  const bool reuse = s.reuse && s.least_iterations >= 0 && s.last_iterations <= reuse_limit;
   PetscReal rtol = 0, abstol = 0, dtol = 0;
   PetscInt max_it = 0;
   check(KSPGetTolerances(s.ksp, &rtol, &abstol, &dtol, &max_it), "KSPGetTolerances");
@@ -791,7 +793,7 @@ SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::ve
   stats.converged = reason > 0;
   stats.reason = KSPConvergedReasons[reason];
   stats.preconditioner_built = built;
-  if (built) s.built_iterations = static_cast<int>(iterations);
+  s.least_iterations = built ? static_cast<int>(iterations) : std::min(s.least_iterations, static_cast<int>(iterations));
   s.last_iterations = static_cast<int>(iterations);
   return stats;
 }
@@ -834,7 +836,7 @@ void LinearSolver::reuse_preconditioner(bool on) { impl_->reuse = on; }
 void LinearSolver::set_residual_floor(double relative) { impl_->residual_floor = relative; }
 void LinearSolver::scale_tolerance(double factor) { impl_->tolerance_factor = factor; }
 
-void LinearSolver::rebuild_preconditioner() { impl_->built_iterations = -1; }
+void LinearSolver::rebuild_preconditioner() { impl_->least_iterations = -1; }
 
 std::string LinearSolver::description() const {
   KSPType ksp_type = nullptr;

@@ -116,6 +116,55 @@ TEST(LinearSolver, ReusesThePreconditionerWhileItServes) {
   EXPECT_TRUE(solve_shifted(fresh, pattern, values, 1e-7, exact).preconditioner_built);
 }
 
+// The reuse limit follows the fewest iterations a solve has taken with the preconditioner, not its
+// building solve's (a run's first steps, which build it, are its hardest): ILU(0) of the 2D
+// Laplacian (not exact: the building solve from zero iterates), a solve from next to the answer
+// takes fewer, then one from a thousandth off it more than the limit those set (within the cap,
+// twice the limit): the solve after it builds anew (against the building solve's count it would have
+// reused it).
+TEST(LinearSolver, ReuseLimitFollowsTheFewestIterationsSinceTheBuild) {
+  const int side = 30, n = side * side;
+  SparsePattern pattern;
+  std::vector<double> values;
+  pattern.rows = n;
+  pattern.row_start.push_back(0);
+  for (int i = 0; i < n; ++i) {
+    const int x = i % side, y = i / side;
+    for (int j : {i - side, i - 1, i, i + 1, i + side}) {
+      if (j < 0 || j >= n || (j == i - 1 && x == 0) || (j == i + 1 && x == side - 1)) continue;
+      (void)y;
+      pattern.columns.push_back(j);
+      values.push_back(j == i ? 4.0 : -1.0);
+    }
+    pattern.row_start.push_back(pattern.nonzeros());
+  }
+  std::vector<double> exact(n), b(n, 0.0);
+  for (int i = 0; i < n; ++i) exact[i] = std::sin(0.37 * i) + 0.01 * i;
+  for (int i = 0; i < n; ++i)
+    for (int k = pattern.row_start[i]; k < pattern.row_start[i + 1]; ++k) b[i] += values[k] * exact[pattern.columns[k]];
+  LinearSolver solver(pattern, 1, time_step_options(), "-ksp_type gmres -pc_type ilu -ksp_rtol 1e-10");
+  solver.reuse_preconditioner(true);
+  const auto solve = [&](double start) {  // from `start` times the answer (0: from zero)
+    std::vector<double> x(n);
+    for (int i = 0; i < n; ++i) x[i] = start * exact[i];
+    const SolveStats stats = solver.solve(values, b, x);
+    EXPECT_TRUE(stats.converged) << stats.reason;
+    for (int i = 0; i < n; ++i) EXPECT_NEAR(x[i], exact[i], 1e-6);
+    return stats;
+  };
+  const SolveStats built = solve(0.0), near = solve(1.0 - 1e-7), again = solve(1.0 - 1e-3), after = solve(0.0);
+  EXPECT_TRUE(built.preconditioner_built);
+  EXPECT_FALSE(near.preconditioner_built);
+  EXPECT_FALSE(again.preconditioner_built);
+  const int limit = static_cast<int>(LinearSolver::kReuseGrowth * near.iterations) + LinearSolver::kReuseSlack;
+  ASSERT_GT(again.iterations, limit);  // the case this test is about
+  ASSERT_LE(again.iterations, static_cast<int>(LinearSolver::kReuseGrowth * built.iterations) + LinearSolver::kReuseSlack);
+  EXPECT_TRUE(after.preconditioner_built);
+  std::printf("iterations: %d building, %d from next to the answer, %d from a thousandth off (limit %d), then built "
+              "anew\n",
+              built.iterations, near.iterations, again.iterations, limit);
+}
+
 // Points on a line, each with its neighbours and itself.
 SparsePattern line_points(int n) {
   SparsePattern p;
