@@ -56,7 +56,6 @@ void ensure_petsc() {
   (void)started;
 }
 
-
 // Whether the next solve keeps its preconditioner: the Krylov method's, and that of each solver
 // nested in a field split (its velocity block's and its Schur complement's), whose own matrices
 // changed with the assembly too: reuse on the outer solver alone left PETSc building those anew
@@ -741,9 +740,9 @@ SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::ve
   VM_CHECK(x.size() == s.rows + s.block_size * s.pattern.ghost_rows.size(), "the solution's size: own and ghost rows");
   s.load(rhs, x, "solve_assembled");
 
-  // Reuse the preconditioner while the solve before did not take much more than the one
-  // that built it; cap the reusing solve at twice that, and repeat it with a new preconditioner
-  // if it fails.
+  // Reuse the preconditioner while the solve before did not take much more than the fewest any
+  // solve took with it; cap the reusing solve at twice that, and repeat it with a new
+  // preconditioner if it fails.
   const int reuse_limit =
       static_cast<int>(kReuseGrowth * std::max(s.least_iterations, 0)) + kReuseSlack;
   const bool reuse = s.reuse && s.least_iterations >= 0 && s.last_iterations <= reuse_limit;

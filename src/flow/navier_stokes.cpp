@@ -197,10 +197,10 @@ struct NavierStokes::Impl {
   enum class Linearization { picard, convection, full };
   void assemble(const std::vector<Vec3>& advect, const std::vector<Vec3>& history, double mass_coefficient,
                 double dt, Linearization linearization = Linearization::picard);
-  // `direct_fallback`: when the iterative solver does not converge and the system has at most
-  // NavierStokes::kDirectFallbackUnknowns unknowns, solve it directly (MUMPS), said (steady solves).
   // Solves the assembled system from an initial guess: `guess`'s velocity with the current
-  // pressure (null: the current flow).
+  // pressure (null: the current flow). `direct_fallback`: when the iterative solver does not
+  // converge and the system has at most NavierStokes::kDirectFallbackUnknowns unknowns, solve it
+  // directly (MUMPS), said (steady solves).
   void solve_system(StepReport& report, const std::string& where, bool direct_fallback = false,
                     const std::vector<Vec3>* guess = nullptr);
   bool direct_now = false;  // a steady solve went to the direct solver: its next iterations too
