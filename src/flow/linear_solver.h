@@ -67,9 +67,14 @@ struct SolveStats {
 // change fell below 1e-8; now 2e-9 there, 578 linear iterations for Newton's 15 against 497.)
 // (Inline, as the other option strings: the program has them without opening PETSc's module,
 // flow/petsc_module.h.)
+// GMRES's classical Gram-Schmidt refined where it loses orthogonality (PETSc's refine_ifneeded): over
+// its long cycles (up to 200 vectors) it did, and broke down on the carotid bifurcation at Re 300
+// (bench/steady_vessels.sh, 294k unknowns: DIVERGED_BREAKDOWN after 200 iterations at its last
+// stage's first Newton iteration, the direct solver then taking 686 s for the whole solve; refined,
+// 107 iterations there, 14 Newton iterations and 905 linear in 71 s).
 inline std::string saddle_point_options() {
   return "-ksp_type gmres -ksp_pc_side right -ksp_rtol 1e-3 -ksp_converged_use_initial_residual_norm "
-         "-ksp_max_it 1000 -ksp_gmres_restart 200 "
+         "-ksp_max_it 1000 -ksp_gmres_restart 200 -ksp_gmres_cgs_refinement_type refine_ifneeded "
          "-pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full "
          "-pc_fieldsplit_schur_precondition user "
          "-fieldsplit_u_ksp_type preonly -fieldsplit_u_pc_type bjacobi -fieldsplit_u_sub_pc_type ilu "
