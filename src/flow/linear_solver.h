@@ -194,18 +194,38 @@ struct EntryPlace {
   int components = 0;  // block_size - 1: the components from `first`
   double& operator[](int j) const { return j < components ? first[stride * j] : *last; }
 };
+// A field split's (MatrixValues::split) entries of all of point a's rows at one column point, the
+// layout entry_place reads them from: the velocity block's c x c (c = block_size - 1, BAIJ, by
+// columns), the velocity rows' entries in the pressure column (a row every `count`), the pressure
+// row's in the velocity columns (c together), the pressure block's and the Schur complement's
+// preconditioning matrix's (null without one). The assembly adds a cell's point pair through it.
+struct SplitPairPlace {
+  double* velocity;
+  double* gradient;
+  int count;
+  double* divergence;
+  double* pressure;
+  double* schur;
+};
+inline SplitPairPlace split_pair_place(const MatrixValues& m, int block_size, bool own, int before, int count,
+                                       int place) {
+  const int c = block_size - 1, at = before + place;
+  double* const* const rows = own ? m.split_own[0] : m.split_other[0];
+  double* const* const last = own ? m.split_own[1] : m.split_other[1];
+  double* const schur = own ? m.schur_own : m.schur_other;
+  return {rows[0] + c * c * at, rows[1] + c * before + place, count, last[0] + c * at, last[1] + at,
+          schur ? schur + at : nullptr};
+}
 inline EntryPlace entry_place(const MatrixValues& m, int block_size, bool own, int before, int count, int i,
                               int place) {
   if (!m.split) {
     double* const v = (own ? m.own : m.other) + block_size * (block_size * before + i * count + place);
     return {v, v + block_size - 1, nullptr, 1, block_size - 1};
   }
-  const int c = block_size - 1, field = i == c ? 1 : 0, rows = field ? 1 : c, row = field ? 0 : i;
-  double* const* const blocks = own ? m.split_own[field] : m.split_other[field];
-  double* const schur = own ? m.schur_own : m.schur_other;
-  double* const last = blocks[1] + rows * before + row * count + place;
-  if (field == 0) return {blocks[0] + c * c * (before + place) + row, last, nullptr, c, c};  // BAIJ, by columns
-  return {blocks[0] + c * (before + place), last, schur ? schur + before + place : nullptr, 1, c};
+  const int c = block_size - 1;
+  const SplitPairPlace pair = split_pair_place(m, block_size, own, before, count, place);
+  if (i < c) return {pair.velocity + i, pair.gradient + i * count, nullptr, c, c};
+  return {pair.divergence, pair.pressure, pair.schur, 1, c};
 }
 
 class LinearSolver {

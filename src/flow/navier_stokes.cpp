@@ -151,36 +151,26 @@ struct NavierStokes::Impl {
   std::vector<int> own_start, other_start, place;
   MatrixValues values;  // during the assembly
   bool owned_global(int g) const { return g >= node_begin && g < node_begin + owned; }
-  EntryPlace entry(int a, int i, int k) const {
-    if (owned_global(node_columns[k]))
-      return entry_place(values, kBlock, true, own_start[a], own_start[a + 1] - own_start[a], i, place[k]);
-    return entry_place(values, kBlock, false, other_start[a], other_start[a + 1] - other_start[a], i, place[k]);
-  }
-  // The same for all of owned point a's rows at slot k when the matrix is held as the field
-  // split's blocks (values.split), entry_place's layout written out for a point pair: the velocity
-  // block's 3 x 3 (by columns), the gradient's three entries (a row every `count`), the
-  // divergence's three, the pressure block's and the Schur preconditioning matrix's (or null).
-  struct PairEntries {
-    double* velocity;
-    double* gradient;
-    int count;
-    double* divergence;
-    double* pressure;
-    double* schur;
+  // Where owned point a's rows hold their entries at slot k of its node graph row: whether the
+  // column point is this process's, the entries of that kind in the rows before a's and in a's, and
+  // its place among them (entry_place's arguments).
+  struct RowPart {
+    bool own;
+    int before, count, place;
   };
-  PairEntries pair_entries(int a, int k) const {
+  RowPart row_part(int a, int k) const {
     const bool own = owned_global(node_columns[k]);
-    const int before = own ? own_start[a] : other_start[a];
-    const int at = before + place[k];
-    double* const* const rows = own ? values.split_own[0] : values.split_other[0];
-    double* const* const last = own ? values.split_own[1] : values.split_other[1];
-    double* const schur = own ? values.schur_own : values.schur_other;
-    return {rows[0] + 9 * at,
-            rows[1] + 3 * before + place[k],
-            own ? own_start[a + 1] - own_start[a] : other_start[a + 1] - other_start[a],
-            last[0] + 3 * at,
-            last[1] + at,
-            schur ? schur + at : nullptr};
+    const std::vector<int>& start = own ? own_start : other_start;
+    return {own, start[a], start[a + 1] - start[a], place[k]};
+  }
+  EntryPlace entry(int a, int i, int k) const {
+    const RowPart r = row_part(a, k);
+    return entry_place(values, kBlock, r.own, r.before, r.count, i, r.place);
+  }
+  // All of a's rows at slot k at once, when the matrix is held as the field split's blocks.
+  SplitPairPlace pair_entries(int a, int k) const {
+    const RowPart r = row_part(a, k);
+    return split_pair_place(values, kBlock, r.own, r.before, r.count, r.place);
   }
   // Position of local point b among owned point a's neighbours in the node graph.
   int slot(int a, int b) const {
@@ -676,7 +666,7 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
       for (int a = 0; a < 4; ++a) {
         if (t4[a] < lo || t4[a] >= hi) continue;
         for (int b = 0; b < 4; ++b) {
-          const PairEntries to = pair_entries(t4[a], cell_slot(e, a, b));
+          const SplitPairPlace to = pair_entries(t4[a], cell_slot(e, a, b));
           __builtin_prefetch(to.velocity, 1);
           __builtin_prefetch(to.velocity + 8, 1);
           __builtin_prefetch(to.divergence, 1);
@@ -793,7 +783,7 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
       if (!any_fixed && values.split) {
         for (int i = 0; i < kBlock; ++i) rhs[kBlock * na + i] += F[4 * a + i];
         for (int b = 0; b < 4; ++b) {
-          const PairEntries to = pair_entries(na, cell_slot(e, a, b));
+          const SplitPairPlace to = pair_entries(na, cell_slot(e, a, b));
           for (int i = 0; i < 3; ++i) {
             for (int j = 0; j < 3; ++j) to.velocity[i + 3 * j] += K[4 * a + i][4 * b + j];
             to.gradient[i * to.count] += K[4 * a + i][4 * b + 3];
