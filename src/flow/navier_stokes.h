@@ -127,7 +127,8 @@ class NavierStokes {
   // warning; larger ones are a ComputationError as before.
   static constexpr int kDirectFallbackUnknowns = 300000;
   // An unsteady run's start from the Stokes flow of the conditions at the current time (one
-  // linear solve, no advection): the developed flow a pipe would take seconds of time steps to
+  // linear solve, no advection; stabilized with the time steps' tau_M, so that its discrete
+  // continuity equation is theirs): the developed flow a pipe would take seconds of time steps to
   // reach. The next step() is the first (BDF1).
   StepReport start_from_stokes();
 
