@@ -1,5 +1,6 @@
 #include "flow/navier_stokes.h"
 
+#include "flow/stabilized_cell.h"
 #include "flow/womersley.h"
 #include "mesh/error.h"
 
@@ -13,6 +14,7 @@
 #include <cstdint>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <set>
 #include <type_traits>
 
@@ -20,7 +22,6 @@ namespace vesselmesh::flow {
 namespace {
 
 constexpr int kBlock = 4;     // u, v, w, p per node
-constexpr double kCI = 36.0;  // inverse-estimate constant of linear tetrahedra
 
 using Clock = std::chrono::steady_clock;
 
@@ -648,181 +649,198 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
   // preconditioning matrix at the open ends, below).
   std::vector<double> momentum_share(values.schur_own ? owned : 0, 0.0);
   const double m = mass_coefficient;
-  const double time_term = dt > 0.0 ? 4.0 / (dt * dt) : 0.0;
 
   // The cells' systems, added to the rows of the owned points in [lo, hi) (a chunk of the
   // threads' split, chunk_cells): each row's in the cells' order, whatever the chunk.
   const int chunks = static_cast<int>(chunk_begin.size()) - 1;
   chunk_cfl.assign(static_cast<size_t>(chunks), 0.0);
-  // (cfl: the chunk's largest cell CFL number so far, a local of its thread's: written to
-  // chunk_cfl once the chunk is done, not at each cell, whose other entries share a cache line
-  // with it: 13 % of the assembly's samples at 420k unknowns went to that line's passing between
-  // the two cores.)
-  const auto add_cell = [&](size_t e, int lo, int hi, double& cfl) {
-    double K[16][16];
-    double F[16];
-    double S[4][4];  // the Schur complement's preconditioning matrix (a weighted pressure Laplacian)
-    const Tet& t4 = tets[e];
-    // The cell's entries in the field split's blocks, fetched into the cache while its system is
-    // worked out (the scatter below waited on them: 0.153 -> 0.142 s an assembly at 420k unknowns).
-    if (values.split)
-      for (int a = 0; a < 4; ++a) {
-        if (t4[a] < lo || t4[a] >= hi) continue;
-        for (int b = 0; b < 4; ++b) {
-          const SplitPairPlace to = pair_entries(t4[a], cell_slot(e, a, b));
-          __builtin_prefetch(to.velocity, 1);
-          __builtin_prefetch(to.velocity + 8, 1);
-          __builtin_prefetch(to.divergence, 1);
-          __builtin_prefetch(to.pressure, 1);
-        }
-      }
-    double V = 0.0;
-    const std::array<Vec3, 4> g = cell_gradients(e, V);
-    Vec3 ubar = Vec3::Zero(), hbar = Vec3::Zero();
+  const CellParameters parameters{.mass = m, .dt = dt, .viscosity = nu};
+  // Newton's terms on cell (lane l of `cells`)'s system K and right-hand side F.
+  const auto add_newton_terms = [&](const CellSystems& cells, int l, const Tet& t4, double K[16][16], double F[16]) {
+    const double V = cells.volume[l], tau_m = cells.tau_m[l], tau_c = cells.tau_c[l];
+    std::array<Vec3, 4> g;
+    double c[4];
     for (int a = 0; a < 4; ++a) {
-      ubar += advect[t4[a]];
-      hbar += history[t4[a]];
+      g[a] = Vec3(cells.g[a][0][l], cells.g[a][1][l], cells.g[a][2][l]);
+      c[a] = cells.c[a][l];
     }
-    ubar *= 0.25;
-    hbar *= 0.25;
-    if (dt > 0.0) cfl = std::max(cfl, cell_cfl(g, ubar, dt));
+    const Vec3 ubar(cells.ubar[0][l], cells.ubar[1][l], cells.ubar[2][l]);
+    const Vec3 hbar(cells.hbar[0][l], cells.hbar[1][l], cells.hbar[2][l]);
     Eigen::Matrix3d G = Eigen::Matrix3d::Zero();
     for (int a = 0; a < 4; ++a) G += g[a] * g[a].transpose();
-    const double tau_m =
-        1.0 / std::sqrt(time_term + ubar.dot(G * ubar) + kCI * nu * nu * G.squaredNorm());
-    const double tau_c = 1.0 / (tau_m * G.trace());
-    double c[4];
-    for (int a = 0; a < 4; ++a) c[a] = ubar.dot(g[a]);
-    // The Schur complement -A10 A00^-1 A01 is near B D^-1 B^T, D the momentum rows' diagonal per
-    // volume: on the element's own stencil, V w g_a . g_b with w = V over the element's momentum
-    // diagonal (its mass lumped, the viscous, SUPG and grad-div parts; the convection's sums to
-    // zero), where PETSc's selfp multiplies B diag(A00)^-1 B^T out over two rings of points.
-    double w = 0.0;
-    if (values.schur_own) {
-      double momentum = m * V;
-      for (int a = 0; a < 4; ++a)
-        momentum += V * ((nu + tau_c / 3.0) * g[a].squaredNorm() + tau_m * c[a] * c[a]);
-      w = V / momentum;
-      for (int a = 0; a < 4; ++a) {
-        for (int b = 0; b < 4; ++b) S[a][b] = w * V * g[a].dot(g[b]);
-        if (t4[a] >= lo && t4[a] < hi) momentum_share[t4[a]] += momentum / 4.0;
-      }
-    }
-
+    // The element's convection is V/4 (ubar . grad) u in each row, ubar the mean of its corners'
+    // velocities: its derivative in u_b beyond the Picard part is V/16 grad u (every a, b), and
+    // Newton's right-hand side gains that part applied to the current flow, V/4 (grad u) ubar.
+    // The stabilization's terms are tau_m V c_a r (momentum, SUPG) and tau_m V g_a . r
+    // (continuity, PSPG), r = m u + (ubar . grad) u + grad p - h the element's strong residual,
+    // c_a = ubar . g_a: their derivatives in u_b through ubar (tau_m held; its own derivative
+    // below) are tau_m V/4 (g_a[j] r_i + c_a grad(i, j)) and tau_m V/4 (g_a . grad(:, j)),
+    // and Newton's right-hand side gains them applied to the current flow. (Without them Newton's
+    // iterations converged only linearly where the stabilization weighs: 0.7 a step on a carotid
+    // bifurcation at Re 300.)
+    Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();  // grad(i, j) = d u_i / d x_j
+    Vec3 grad_p = Vec3::Zero();
     for (int a = 0; a < 4; ++a) {
-      for (int b = 0; b < 4; ++b) {
-        const double mass = V / 20.0 * (a == b ? 2.0 : 1.0);
-        const double diag = m * mass + V / 4.0 * c[b] + nu * V * g[a].dot(g[b]) + tau_m * V * c[a] * (m / 4.0 + c[b]);
-        for (int i = 0; i < 3; ++i) {
-          for (int j = 0; j < 3; ++j) K[4 * a + i][4 * b + j] = tau_c * V * g[a][i] * g[b][j];
-          K[4 * a + i][4 * b + i] += diag;
-          K[4 * a + i][4 * b + 3] = -g[a][i] * V / 4.0 + tau_m * V * c[a] * g[b][i];
-          K[4 * a + 3][4 * b + i] = g[b][i] * V / 4.0 + tau_m * V * g[a][i] * (m / 4.0 + c[b]);
+      grad += advect[t4[a]] * g[a].transpose();
+      grad_p += p[t4[a]] * g[a];
+    }
+    const Vec3 convection = grad * ubar;
+    const Vec3 r = m * ubar + convection + grad_p - hbar;
+    const double held = stabilization_jacobian ? tau_m : 0.0;
+    const Vec3 extra = V / 4.0 * convection;
+    // And the parameters' own derivatives (full): tau_m = (time_term + ubar.G ubar + ...)^-1/2
+    // gives d tau_m / d u_b = -tau_m^3 G ubar / 4, and, tau_c being 1 / (tau_m tr G),
+    // d tau_c / d u_b = tau_c tau_m^2 G ubar / 4: rank-one terms on the SUPG and PSPG rows (their residuals
+    // V c_a r and V g_a . r) and the LSIC rows (V g_a div u). (Held, Newton's last steps cut
+    // the residual 4-27-fold on a carotid bifurcation at Re 300.)
+    const Vec3 dtau = stabilization_jacobian ? Vec3(-tau_m * tau_m * tau_m / 4.0 * (G * ubar)) : Vec3::Zero();
+    const double dtau_c_over_dtau = -tau_c / tau_m, divergence = grad.trace(), along = 4.0 * dtau.dot(ubar);
+    for (int a = 0; a < 4; ++a) {
+      const Vec3 pspg = g[a].transpose() * grad;  // (g_a . grad(:, j))_j
+      Vec3 momentum_tau;  // per row i, what multiplies d tau_m / d u_b
+      for (int i = 0; i < 3; ++i)
+        momentum_tau[i] = V * (c[a] * r[i] + dtau_c_over_dtau * g[a][i] * divergence);
+      const double continuity_tau = V * g[a].dot(r);
+      for (int b = 0; b < 4; ++b)
+        for (int j = 0; j < 3; ++j) {
+          for (int i = 0; i < 3; ++i)
+            K[4 * a + i][4 * b + j] += V / 16.0 * grad(i, j) + held * V / 4.0 * (g[a][j] * r[i] + c[a] * grad(i, j)) +
+                                       momentum_tau[i] * dtau[j];
+          K[4 * a + 3][4 * b + j] += held * V / 4.0 * pspg[j] + continuity_tau * dtau[j];
         }
-        K[4 * a + 3][4 * b + 3] = tau_m * V * g[a].dot(g[b]);
-      }
-      // Right-hand side: the BDF history, in the Galerkin and the stabilization terms.
-      Vec3 mh = Vec3::Zero();
-      for (int b = 0; b < 4; ++b) mh += V / 20.0 * (a == b ? 2.0 : 1.0) * history[t4[b]];
-      for (int i = 0; i < 3; ++i) F[4 * a + i] = mh[i] + tau_m * c[a] * V * hbar[i];
-      F[4 * a + 3] = tau_m * V * g[a].dot(hbar);
+      for (int i = 0; i < 3; ++i)
+        F[4 * a + i] += extra[i] + held * V * c[a] * (r[i] + convection[i]) + momentum_tau[i] * along;
+      F[4 * a + 3] += held * V * g[a].dot(convection) + continuity_tau * along;
     }
-    if (newton) {
-      // The element's convection is V/4 (ubar . grad) u in each row, ubar the mean of its corners'
-      // velocities: its derivative in u_b beyond the Picard part is V/16 grad u (every a, b), and
-      // Newton's right-hand side gains that part applied to the current flow, V/4 (grad u) ubar.
-      // The stabilization's terms are tau_m V c_a r (momentum, SUPG) and tau_m V g_a . r
-      // (continuity, PSPG), r = m u + (ubar . grad) u + grad p - h the element's strong residual,
-      // c_a = ubar . g_a: their derivatives in u_b through ubar (tau_m held; its own derivative
-      // below) are tau_m V/4 (g_a[j] r_i + c_a grad(i, j)) and tau_m V/4 (g_a . grad(:, j)),
-      // and Newton's right-hand side gains them applied to the current flow. (Without them Newton's
-      // iterations converged only linearly where the stabilization weighs: 0.7 a step on a carotid
-      // bifurcation at Re 300.)
-      Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();  // grad(i, j) = d u_i / d x_j
-      Vec3 grad_p = Vec3::Zero();
-      for (int a = 0; a < 4; ++a) {
-        grad += advect[t4[a]] * g[a].transpose();
-        grad_p += p[t4[a]] * g[a];
-      }
-      const Vec3 convection = grad * ubar;
-      const Vec3 r = m * ubar + convection + grad_p - hbar;
-      const double held = stabilization_jacobian ? tau_m : 0.0;
-      const Vec3 extra = V / 4.0 * convection;
-      // And the parameters' own derivatives (full): tau_m = (time_term + ubar.G ubar + ...)^-1/2
-      // gives d tau_m / d u_b = -tau_m^3 G ubar / 4, and, tau_c being 1 / (tau_m tr G),
-      // d tau_c / d u_b = tau_c tau_m^2 G ubar / 4: rank-one terms on the SUPG and PSPG rows (their residuals
-      // V c_a r and V g_a . r) and the LSIC rows (V g_a div u). (Held, Newton's last steps cut
-      // the residual 4-27-fold on a carotid bifurcation at Re 300.)
-      const Vec3 dtau = stabilization_jacobian ? Vec3(-tau_m * tau_m * tau_m / 4.0 * (G * ubar)) : Vec3::Zero();
-      const double dtau_c_over_dtau = -tau_c / tau_m, divergence = grad.trace(), along = 4.0 * dtau.dot(ubar);
-      for (int a = 0; a < 4; ++a) {
-        const Vec3 pspg = g[a].transpose() * grad;  // (g_a . grad(:, j))_j
-        Vec3 momentum_tau;  // per row i, what multiplies d tau_m / d u_b
-        for (int i = 0; i < 3; ++i)
-          momentum_tau[i] = V * (c[a] * r[i] + dtau_c_over_dtau * g[a][i] * divergence);
-        const double continuity_tau = V * g[a].dot(r);
+    };
+  // Lane l of `cells`'s systems (cell e): into the matrix and right-hand side, moving known
+  // Dirichlet values to the right-hand side and giving known rows only their diagonal. (cfl: the
+  // chunk's largest cell CFL number so far, a local of its thread's: written to chunk_cfl once
+  // the chunk is done, not at each cell, whose other entries share a cache line with it: 13 % of
+  // the assembly's samples at 420k unknowns went to that line's passing between the two cores.)
+  // (with_newton: std::true_type or std::false_type, each its own code: the entries are read from
+  // K or from the lane without a test at each.)
+  const auto add_cell = [&](auto with_newton, const CellSystems& cells, int l, size_t e, int lo, int hi, double& cfl) {
+    constexpr bool kNewton = decltype(with_newton)::value;
+    const Tet& t4 = tets[e];
+    if (dt > 0.0) cfl = std::max(cfl, cells.cfl[l]);
+    if (values.schur_own)
+      for (int a = 0; a < 4; ++a)
+        if (t4[a] >= lo && t4[a] < hi) momentum_share[t4[a]] += cells.momentum[l] / 4.0;
+    // The cell's system whole where Newton's terms are added to it; else the lane's blocks as they are.
+    double K[16][16];
+    double F[16];
+    if constexpr (kNewton) {
+      for (int a = 0; a < 4; ++a)
         for (int b = 0; b < 4; ++b)
-          for (int j = 0; j < 3; ++j) {
-            for (int i = 0; i < 3; ++i)
-              K[4 * a + i][4 * b + j] += V / 16.0 * grad(i, j) + held * V / 4.0 * (g[a][j] * r[i] + c[a] * grad(i, j)) +
-                                         momentum_tau[i] * dtau[j];
-            K[4 * a + 3][4 * b + j] += held * V / 4.0 * pspg[j] + continuity_tau * dtau[j];
+          for (int i = 0; i < 4; ++i) {
+            for (int j = 0; j < 4; ++j) K[4 * a + i][4 * b + j] = cells.block[a][b][i][j][l];
+            F[4 * a + i] = cells.rhs[a][i][l];
           }
-        for (int i = 0; i < 3; ++i)
-          F[4 * a + i] += extra[i] + held * V * c[a] * (r[i] + convection[i]) + momentum_tau[i] * along;
-        F[4 * a + 3] += held * V * g[a].dot(convection) + continuity_tau * along;
-      }
+      add_newton_terms(cells, l, t4, K, F);
     }
-
-    // Scatter, moving known Dirichlet values to the right-hand side. A cell with no known value
-    // at its points into the field split's blocks (most cells): each point pair's entries found once
-    // and added block by block (entry_place's layout, written out), in the same order as below.
+    const auto block = [&](int a, int b, int i, int j) {
+      if constexpr (kNewton) return K[4 * a + i][4 * b + j];
+      else return cells.block[a][b][i][j][l];
+    };
+    const auto cell_rhs = [&](int a, int i) {
+      if constexpr (kNewton) return F[4 * a + i];
+      else return cells.rhs[a][i][l];
+    };
     bool any_fixed = false;
     for (int b = 0; b < 4; ++b)
       for (int j = 0; j < kBlock; ++j) any_fixed = any_fixed || fixed[kBlock * t4[b] + j];
     for (int a = 0; a < 4; ++a) {
       const int na = t4[a];
       if (na < lo || na >= hi) continue;
-      if (!any_fixed && values.split) {
-        for (int i = 0; i < kBlock; ++i) rhs[kBlock * na + i] += F[4 * a + i];
-        for (int b = 0; b < 4; ++b) {
+      const char* row_fixed = &fixed[kBlock * na];
+      for (int i = 0; i < kBlock; ++i)
+        if (row_fixed[i]) diagonal[kBlock * na + i] += block(a, a, i, i);
+        else rhs[kBlock * na + i] += cell_rhs(a, i);
+      for (int b = 0; b < 4; ++b) {
+        const int nb = t4[b];
+        const char* column_fixed = &fixed[kBlock * nb];
+        if (values.split) {
+          // The field split's blocks: the point pair's entries found once (entry_place's layout,
+          // written out), block by block where the cell has no known value (most cells).
           const SplitPairPlace to = pair_entries(na, cell_slot(e, a, b));
-          for (int i = 0; i < 3; ++i) {
-            for (int j = 0; j < 3; ++j) to.velocity[i + 3 * j] += K[4 * a + i][4 * b + j];
-            to.gradient[i * to.count] += K[4 * a + i][4 * b + 3];
+          if (!any_fixed) {
+            for (int i = 0; i < 3; ++i) {
+              for (int j = 0; j < 3; ++j) to.velocity[i + 3 * j] += block(a, b, i, j);
+              to.gradient[i * to.count] += block(a, b, i, 3);
+            }
+            for (int j = 0; j < 3; ++j) to.divergence[j] += block(a, b, 3, j);
+            *to.pressure += block(a, b, 3, 3);
+            if (to.schur) *to.schur += cells.schur[a][b][l];
+            continue;
           }
-          for (int j = 0; j < 3; ++j) to.divergence[j] += K[4 * a + 3][4 * b + j];
-          *to.pressure += K[4 * a + 3][4 * b + 3];
-          if (to.schur) *to.schur += S[a][b];
-        }
-        continue;
-      }
-      for (int i = 0; i < kBlock; ++i) {
-        const int row = kBlock * na + i;
-        if (fixed[row]) {
-          diagonal[row] += K[4 * a + i][4 * a + i];
+          for (int i = 0; i < kBlock; ++i) {
+            if (row_fixed[i]) continue;
+            for (int j = 0; j < kBlock; ++j) {
+              if (column_fixed[j]) rhs[kBlock * na + i] -= block(a, b, i, j) * dirichlet[kBlock * nb + j];
+              else if (i < 3) (j < 3 ? to.velocity[i + 3 * j] : to.gradient[i * to.count]) += block(a, b, i, j);
+              else (j < 3 ? to.divergence[j] : *to.pressure) += block(a, b, i, j);
+            }
+            if (i == 3 && to.schur && !column_fixed[3]) *to.schur += cells.schur[a][b][l];
+          }
           continue;
         }
-        rhs[row] += F[4 * a + i];
-        for (int b = 0; b < 4; ++b) {
+        for (int i = 0; i < kBlock; ++i) {  // one matrix (a caller's preconditioner other than the field split)
+          if (row_fixed[i]) continue;
           const EntryPlace place_b = entry(na, i, cell_slot(e, a, b));
-          const int nb = t4[b];
           for (int j = 0; j < kBlock; ++j) {
-            const int column = kBlock * nb + j;
-            if (fixed[column]) rhs[row] -= K[4 * a + i][4 * b + j] * dirichlet[column];
-            else place_b[j] += K[4 * a + i][4 * b + j];
-            if (j == 3 && place_b.schur && !fixed[column]) *place_b.schur += S[a][b];
+            if (column_fixed[j]) rhs[kBlock * na + i] -= block(a, b, i, j) * dirichlet[kBlock * nb + j];
+            else place_b[j] += block(a, b, i, j);
           }
         }
       }
     }
   };
+  // The cells kCellLanes at a time: their corners gathered, the field split's entries of their
+  // point pairs fetched into the cache while the systems are worked out (the scatter waited on
+  // them), then each cell added in turn.
+  const auto add_cells = [&](const int* cell, int count, int lo, int hi, double& cfl) {
+    CellCorners corners;
+    for (int l = 0; l < kCellLanes; ++l) {
+      const Tet& t4 = tets[static_cast<size_t>(cell[std::min(l, count - 1)])];
+      for (int a = 0; a < 4; ++a)
+        for (int i = 0; i < 3; ++i) {
+          corners.x[a][i][l] = points[t4[a]][i];
+          corners.u[a][i][l] = advect[t4[a]][i];
+          corners.h[a][i][l] = history[t4[a]][i];
+        }
+    }
+    if (values.split)
+      for (int l = 0; l < count; ++l) {
+        const size_t e = static_cast<size_t>(cell[l]);
+        for (int a = 0; a < 4; ++a) {
+          if (tets[e][a] < lo || tets[e][a] >= hi) continue;
+          for (int b = 0; b < 4; ++b) {
+            const SplitPairPlace to = pair_entries(tets[e][a], cell_slot(e, a, b));
+            __builtin_prefetch(to.velocity, 1);
+            __builtin_prefetch(to.velocity + 8, 1);
+            __builtin_prefetch(to.divergence, 1);
+            __builtin_prefetch(to.pressure, 1);
+          }
+        }
+      }
+    CellSystems systems;
+    stabilized_cells(corners, parameters, systems);
+    for (int l = 0; l < count; ++l)
+      if (newton) add_cell(std::true_type{}, systems, l, static_cast<size_t>(cell[l]), lo, hi, cfl);
+      else add_cell(std::false_type{}, systems, l, static_cast<size_t>(cell[l]), lo, hi, cfl);
+  };
+  std::vector<int> every_cell;  // one chunk: the cells in their order
+  if (chunks == 1) {
+    every_cell.resize(tets.size());
+    std::iota(every_cell.begin(), every_cell.end(), 0);
+  }
   const auto add_chunk = [&](int k) {
+    const std::vector<int>& cell = chunks == 1 ? every_cell : chunk_cells[static_cast<size_t>(k)];
+    const int lo = chunks == 1 ? 0 : chunk_begin[k], hi = chunks == 1 ? owned : chunk_begin[k + 1];
     double cfl = 0.0;
-    if (chunks == 1)
-      for (size_t e = 0; e < tets.size(); ++e) add_cell(e, 0, owned, cfl);
-    else
-      for (int e : chunk_cells[k]) add_cell(static_cast<size_t>(e), chunk_begin[k], chunk_begin[k + 1], cfl);
+    for (size_t i = 0; i < cell.size(); i += kCellLanes)
+      add_cells(cell.data() + i, static_cast<int>(std::min<size_t>(kCellLanes, cell.size() - i)), lo, hi, cfl);
     chunk_cfl[static_cast<size_t>(k)] = cfl;
   };
   if (chunks == 1) add_chunk(0);

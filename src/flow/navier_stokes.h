@@ -10,7 +10,8 @@
 // Stabilization (Tezduyar & Osawa 2000; Bazilevs et al. 2007): per element the metric
 // G = sum_a grad(phi_a) grad(phi_a)^T, tau_M = (4/dt^2 + u.G.u + C_I nu^2 G:G)^(-1/2) with
 // C_I = 36, tau_C = 1 / (tau_M tr G); thin boundary-layer tetrahedra get a small tau across the
-// layer from G itself. Convection uses the element's mean advecting velocity.
+// layer from G itself. Convection uses the element's mean advecting velocity. (The element's
+// system: flow/stabilized_cell.h, four cells at a time.)
 // Boundaries: `wall` no-slip; `velocity` a profile normal to the end (parabolic in the
 // distance from the end's centroid, plug, or Womersley's from the waveform's Fourier series, with
 // the radius of a disc of the end's area) scaled so that its discrete flux is the flow;
