@@ -14,7 +14,6 @@
 #include <cstdint>
 #include <cmath>
 #include <map>
-#include <numeric>
 #include <set>
 #include <type_traits>
 
@@ -830,17 +829,17 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
       if (newton) add_cell(std::true_type{}, systems, l, static_cast<size_t>(cell[l]), lo, hi, cfl);
       else add_cell(std::false_type{}, systems, l, static_cast<size_t>(cell[l]), lo, hi, cfl);
   };
-  std::vector<int> every_cell;  // one chunk: the cells in their order
-  if (chunks == 1) {
-    every_cell.resize(tets.size());
-    std::iota(every_cell.begin(), every_cell.end(), 0);
-  }
-  const auto add_chunk = [&](int k) {
-    const std::vector<int>& cell = chunks == 1 ? every_cell : chunk_cells[static_cast<size_t>(k)];
+  const auto add_chunk = [&](int k) {  // one chunk: every cell in its order
+    const size_t cells = chunks == 1 ? tets.size() : chunk_cells[static_cast<size_t>(k)].size();
     const int lo = chunks == 1 ? 0 : chunk_begin[k], hi = chunks == 1 ? owned : chunk_begin[k + 1];
     double cfl = 0.0;
-    for (size_t i = 0; i < cell.size(); i += kCellLanes)
-      add_cells(cell.data() + i, static_cast<int>(std::min<size_t>(kCellLanes, cell.size() - i)), lo, hi, cfl);
+    int group[kCellLanes];
+    for (size_t i = 0; i < cells; i += kCellLanes) {
+      const int count = static_cast<int>(std::min<size_t>(kCellLanes, cells - i));
+      for (int l = 0; l < count; ++l)
+        group[l] = chunks == 1 ? static_cast<int>(i) + l : chunk_cells[static_cast<size_t>(k)][i + static_cast<size_t>(l)];
+      add_cells(group, count, lo, hi, cfl);
+    }
     chunk_cfl[static_cast<size_t>(k)] = cfl;
   };
   if (chunks == 1) add_chunk(0);
