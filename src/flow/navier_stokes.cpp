@@ -194,13 +194,10 @@ struct NavierStokes::Impl {
   void solve_system(StepReport& report, const std::string& where, bool direct_fallback = false,
                     const std::vector<Vec3>* guess = nullptr);
   bool direct_now = false;  // a steady solve went to the direct solver: its next iterations too
+  // The largest cell CFL number (a cell's mean velocity over its least height, 1 over its largest
+  // barycentric gradient, times dt) over the processes: a pass over the cells of its own, before an
+  // assembly (the pseudo-transient step's choice); the assembly's own is assembled_cfl's.
   double cfl(const std::vector<Vec3>& advect, double dt) const;
-  // A cell's CFL number: its mean velocity over its least height (1 over its largest barycentric gradient) times dt.
-  static double cell_cfl(const std::array<Vec3, 4>& g, const Vec3& mean, double dt) {
-    double largest = 0.0;
-    for (const Vec3& gradient : g) largest = std::max(largest, gradient.norm());
-    return mean.norm() * dt * largest;
-  }
   // Per assembly chunk, the largest cell CFL number of the last assembly with a time step (its
   // convecting velocity; 0 for a steady one), and their largest over the chunks and processes.
   std::vector<double> chunk_cfl;
@@ -593,8 +590,9 @@ double NavierStokes::Impl::cfl(const std::vector<Vec3>& advect, double dt) const
   for (size_t e = 0; e < tets.size(); ++e) {
     const Tet& t4 = tets[e];
     const Vec3 mean = 0.25 * (advect[t4[0]] + advect[t4[1]] + advect[t4[2]] + advect[t4[3]]);
-    double volume = 0.0;
-    worst = std::max(worst, cell_cfl(cell_gradients(e, volume), mean, dt));
+    double volume = 0.0, largest = 0.0;
+    for (const Vec3& g : cell_gradients(e, volume)) largest = std::max(largest, g.norm());
+    worst = std::max(worst, mean.norm() * dt * largest);
   }
   const std::vector<double> all = gather_all(worst);
   return *std::max_element(all.begin(), all.end());
@@ -711,7 +709,7 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
         F[4 * a + i] += extra[i] + held * V * c[a] * (r[i] + convection[i]) + momentum_tau[i] * along;
       F[4 * a + 3] += held * V * g[a].dot(convection) + continuity_tau * along;
     }
-    };
+  };
   // Lane l of `cells`'s systems (cell e): into the matrix and right-hand side, moving known
   // Dirichlet values to the right-hand side and giving known rows only their diagonal. (cfl: the
   // chunk's largest cell CFL number so far, a local of its thread's: written to chunk_cfl once
