@@ -62,4 +62,47 @@ double enclosed_volume(const std::vector<Vec3>& points, const std::vector<Triang
   return v;
 }
 
+TriMesh unit_square(int n, bool flip) {
+  TriMesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) m.points.push_back(Vec3(i, j, 0) / n);
+  const auto id = [&](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      if (!flip) {
+        m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+        m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+      } else {
+        m.triangles.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
+        m.triangles.push_back({id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+      }
+    }
+  return m;
+}
+
+TetMesh kuhn_box(const std::array<int, 3>& cells, const Vec3& size) {
+  TetMesh mesh;
+  const auto id = [&](int i, int j, int k) { return (k * (cells[1] + 1) + j) * (cells[0] + 1) + i; };
+  for (int k = 0; k <= cells[2]; ++k)
+    for (int j = 0; j <= cells[1]; ++j)
+      for (int i = 0; i <= cells[0]; ++i)
+        mesh.points.emplace_back(size.x() * i / cells[0], size.y() * j / cells[1], size.z() * k / cells[2]);
+  const int paths[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int k = 0; k < cells[2]; ++k)
+    for (int j = 0; j < cells[1]; ++j)
+      for (int i = 0; i < cells[0]; ++i)
+        for (const auto& path : paths) {
+          std::array<int, 3> at = {i, j, k};
+          Tet t{};
+          t[0] = id(at[0], at[1], at[2]);
+          for (int s = 0; s < 3; ++s) {
+            ++at[path[s]];
+            t[s + 1] = id(at[0], at[1], at[2]);
+          }
+          if (mesh::tet_volume6(mesh, t) < 0.0) std::swap(t[2], t[3]);
+          mesh.tets.push_back(t);
+        }
+  return mesh;
+}
+
 }  // namespace vesselmesh::test

@@ -2,6 +2,7 @@
 // skip with a message where ../shared is absent), and small meshes built by hand.
 #pragma once
 
+#include "mesh/tetmesh.h"
 #include "mesh/trimesh.h"
 
 #include <gtest/gtest.h>
@@ -45,5 +46,14 @@ double enclosed_volume(const std::vector<Vec3>& points, const std::vector<Triang
 
 // A regular tetrahedron, outward, 4 points and 4 triangles.
 TriMesh tetrahedron(const Vec3& offset = Vec3::Zero(), double size = 1.0);
+
+// The unit square in the plane z = 0 as n x n cells, each cut into two triangles along one diagonal
+// (`flip`: the other).
+TriMesh unit_square(int n, bool flip = false);
+
+// The box [0, size] cut into cells[0] x cells[1] x cells[2] cuboids, each into the six tetrahedra of
+// its main diagonal (Kuhn's subdivision: neighbours share their faces' diagonals), positive; no
+// boundary triangles.
+TetMesh kuhn_box(const std::array<int, 3>& cells, const Vec3& size);
 
 }  // namespace vesselmesh::test

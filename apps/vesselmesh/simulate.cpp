@@ -15,6 +15,7 @@ namespace {
 
 struct Options {
   std::string case_file, output, petsc_options, mesh;
+  int time_step_divisor = 1;
   bool restart = false;
   CommonOptions common;
 };
@@ -24,6 +25,7 @@ int run(const Options& options, bool first) {
   TerminalReporter reporter(options.common.quiet || !first);
   flow::FlowCase fc = flow::read_case(options.case_file);
   if (!options.mesh.empty()) fc.mesh = options.mesh;
+  if (options.time_step_divisor > 1) flow::divide_time_step(fc, options.time_step_divisor);
   const flow::SimulationSummary s =
       flow::simulate(fc, options.output, options.petsc_options, reporter, options.restart);
   if (s.status == "stopped") return 128 + s.signal;
@@ -73,6 +75,10 @@ Command add_simulate_command(CLI::App& parent) {
                   "Volume mesh (.msh or .vtu) to run the case on instead of the case's `mesh` (a path as given "
                   "here, not relative to the case file)")
       ->check(CLI::ExistingFile);
+  app->add_option("--time-step-divisor", o->time_step_divisor,
+                  "Run the case at its time step divided by K, saving at the same times (save_every, checkpoint_every "
+                  "and fluid_every times K): a time-step convergence check")
+      ->check(CLI::PositiveNumber);
   app->add_option("--petsc-options", o->petsc_options,
                   "PETSc options applied after the case's [solver] petsc_options, e.g. \"-ksp_monitor\"");
   app->add_flag("--restart", o->restart,

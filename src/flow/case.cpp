@@ -254,6 +254,15 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
 
 FlowCase read_case(const std::string& path) { return parse_case(io::read_file(path), path); }
 
+void divide_time_step(FlowCase& c, int divisor) {
+  if (divisor < 1) throw OptionError(fmt::format("the time step's divisor must be at least 1 (found {})", divisor));
+  if (c.steady) throw OptionError(fmt::format("{}: a steady case has no time step to divide", c.path));
+  c.dt /= divisor;
+  c.save_every *= divisor;
+  c.checkpoint_every *= divisor;
+  c.fluid_every *= divisor;
+}
+
 void check_tags(const FlowCase& flow_case, const std::vector<std::string>& mesh_tags) {
   const std::set<std::string> in_mesh(mesh_tags.begin(), mesh_tags.end());
   std::set<std::string> in_case;

@@ -116,6 +116,11 @@ FlowCase read_case(const std::string& path);
 // The same from TOML text (`path` names it in messages and resolves the relative paths).
 FlowCase parse_case(const std::string& text, const std::string& path);
 
+// The case with its time step divided by `divisor` (> 1) and its step counts (save_every,
+// checkpoint_every, fluid_every) multiplied by it, so that it saves at the same times: a time-step
+// convergence check (the study's). OptionError for a divisor < 1 or a steady case.
+void divide_time_step(FlowCase& c, int divisor);
+
 // Checks the case's tags against the mesh's: a tag of the case absent from the mesh, or a tag
 // of the mesh without a condition, is an InputError listing both sets.
 void check_tags(const FlowCase& flow_case, const std::vector<std::string>& mesh_tags);

@@ -12,13 +12,18 @@
 #include "io/surface.h"
 #include "io/toml_reader.h"
 #include "io/units.h"
+#include "io/volume_file.h"
 #include "io/vtk_formats.h"
 #include "mesh/clean.h"
 #include "mesh/error.h"
+#include "mesh/locator.h"
 #include "post/wall_series.h"
 #include "remesh/adapt.h"
 #include "remesh/extend.h"
+#include "sizing/metric.h"
+#include "study/envelope.h"
 #include "study/study_report.h"
+#include "study/wall_difference.h"
 #include "volume/fill.h"
 #include "volume/quality.h"
 #include "volume/volume_mesh.h"
@@ -48,11 +53,15 @@ double since(Clock::time_point start) { return std::chrono::duration<double>(Clo
 // -q [--restart]` (its messages on ours), what it did read back from DIR/summary.json. OpenMPI runs
 // as root when told so (its environment); a failed run is an error naming the command.
 flow::SimulationSummary simulate_under_mpirun(const StudyConfig& config, const std::string& mesh,
-                                              const std::string& dir, bool restart) {
+                                              const std::string& dir, bool restart, int time_step_divisor = 1) {
   if (config.program.empty()) throw InternalError("study: ranks > 1 without the program to run under mpirun");
   std::vector<std::string> command = {"mpirun", "-np",   std::to_string(config.ranks), config.program, "simulate",
                                       config.flow_case, "--mesh", mesh, "-o", dir, "-q"};
   if (restart) command.push_back("--restart");
+  if (time_step_divisor > 1) {
+    command.push_back("--time-step-divisor");
+    command.push_back(std::to_string(time_step_divisor));
+  }
   // Without the variables of this process's own MPI (a singleton once PETSc started here), which
   // would make mpirun take its processes for this one's.
   const int code = io::run_process(command, {"OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1"},
@@ -98,7 +107,79 @@ std::optional<Json> matching_stamp(const std::string& path, const std::string& k
   return std::nullopt;
 }
 
+// The places the study measures, on the input: each ring (36 positions round it at most), then each
+// point (its closest point on the wall); per position the inward normal and the local radius of
+// the input's nearest corner.
+std::vector<Place> measured_places(const TriMesh& surface, const std::vector<double>& radius,
+                                   const std::vector<post::RingSpec>& rings, const std::vector<post::PointSpec>& points) {
+  std::vector<Vec3> normal(surface.points.size(), Vec3::Zero());
+  for (const Triangle& f : surface.triangles) {
+    const Vec3 a = (surface.points[f[1]] - surface.points[f[0]]).cross(surface.points[f[2]] - surface.points[f[0]]);
+    for (int v : f) normal[v] += a;
+  }
+  const mesh::SurfaceLocator locator(surface);
+  const auto add = [&](Place& place, const Vec3& x) {
+    const mesh::SurfaceLocator::Hit hit = locator.closest(x);
+    int nearest = surface.triangles[hit.triangle][0];
+    for (int v : surface.triangles[hit.triangle])
+      if ((surface.points[v] - hit.point).norm() < (surface.points[nearest] - hit.point).norm()) nearest = v;
+    place.positions.push_back(hit.point);
+    place.inward.push_back(-normal[nearest].normalized());
+    place.radius.push_back(radius[nearest]);
+  };
+  std::vector<Place> places;
+  const std::vector<Vec3> zero(surface.points.size(), Vec3::Zero());
+  for (const post::RingSpec& spec : rings) {
+    const post::Ring ring = post::cut_ring(surface, zero, spec);
+    Place place{"ring " + spec.name, {}, {}, {}};
+    const size_t step = std::max<size_t>(1, ring.samples.size() / 36);
+    for (size_t k = 0; k < ring.samples.size(); k += step) add(place, ring.samples[k].point);
+    places.push_back(place);
+  }
+  for (const post::PointSpec& p : points) {
+    Place place{"point " + p.name, {}, {}, {}};
+    add(place, p.point);
+    places.push_back(place);
+  }
+  return places;
+}
+
+// The hemodynamic indices a flow wrote (over its last period; flow/simulate.h), if any.
+struct WallIndices {
+  TriMesh mesh;
+  std::vector<double> tawss, osi;
+};
+std::optional<WallIndices> read_wall_indices(const std::string& flow_dir) {
+  const std::string summary = flow_dir + "/summary.json";
+  if (!fs::exists(summary)) return std::nullopt;
+  const Json j = Json::parse(io::read_file(summary));
+  if (!j.contains("indices") || !j["indices"].contains("file")) return std::nullopt;
+  const std::string file = flow_dir + "/" + j["indices"]["file"].get<std::string>();
+  if (!fs::exists(file)) return std::nullopt;
+  io::SurfaceData data = io::read_vtk_surface(file, io::VtkFormat::vtp);
+  WallIndices w;
+  w.mesh = std::move(data.mesh);
+  for (const Field& f : data.point_data) {
+    if (f.name == "tawss") w.tawss = f.values;
+    if (f.name == "osi") w.osi = f.values;
+  }
+  if (w.tawss.size() != w.mesh.points.size() || w.osi.size() != w.mesh.points.size()) return std::nullopt;
+  return w;
+}
+
 }  // namespace
+
+ReferenceKind parse_reference_kind(const std::string& name) {
+  if (name == "envelope") return ReferenceKind::envelope;
+  if (name == "uniform") return ReferenceKind::uniform;
+  throw OptionError(fmt::format("unknown reference kind '{}': give \"envelope\" (finer than every compared mesh "
+                                "everywhere) or \"uniform\" (the seed paper's uniform series)",
+                                name));
+}
+
+std::string reference_kind_name(ReferenceKind kind) {
+  return kind == ReferenceKind::envelope ? "envelope" : "uniform";
+}
 
 StudyConfig parse_study(const std::string& text, const std::string& path) {
   const toml::table parsed = io::parse_toml(text, path);
@@ -136,10 +217,21 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
     }
   }
   if (const toml::table* t = root["reference"].as_table()) {
-    r.known_keys(*t, "reference", {"levels", "factor"});
-    c.levels = r.integer(root["reference"]["levels"], "reference.levels", c.levels, 1);
-    c.factor = r.number(root["reference"]["factor"], "reference.factor", c.factor);
-    if (c.factor <= 1.0) r.fail("reference.factor", "must be more than 1 (each level has that many times the triangles)");
+    r.known_keys(*t, "reference", {"kind", "levels", "factor", "time_step_check"});
+    const io::TomlView v = root["reference"];
+    try {
+      c.reference = parse_reference_kind(r.text(v["kind"], "reference.kind", reference_kind_name(c.reference)));
+    } catch (const Error& e) {
+      r.fail("reference.kind", e.what());
+    }
+    c.levels = r.integer(v["levels"], "reference.levels", c.levels, 1);
+    c.time_step_check = r.flag(v["time_step_check"], "reference.time_step_check", c.time_step_check);
+    c.factor = r.number(v["factor"], "reference.factor", c.reference == ReferenceKind::envelope ? 1.33 : 2.0);
+    if (!(c.factor > 1.0))
+      r.fail("reference.factor", c.reference == ReferenceKind::envelope
+                                     ? "must be more than 1 (each level that many times finer in h; 1.3 or more for "
+                                       "a grid convergence that means something)"
+                                     : "must be more than 1 (each level has that many times the triangles)");
   }
   if (const toml::table* t = root["volume"].as_table()) {
     r.known_keys(*t, "volume", {"layers", "thickness_ratio", "layer_angle", "layer_split_angle", "algorithm",
@@ -216,6 +308,9 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
   }
   if (!c.end_at.empty() && (!c.end_names.empty() || c.inlet >= 0))
     r.fail("end", "name the ends by [[end]] or by [volume] inlet / end_names, not both");
+  if (c.reference == ReferenceKind::envelope && c.kinds.empty())
+    r.fail("meshes", "empty: the envelope reference is made finer than the compared meshes (give some, or "
+                     "[reference] kind = \"uniform\")");
   if (c.rings.empty() && c.points.empty())
     r.fail("ring", "give at least one [[ring]] or [[point]]: the study compares WSS there");
   return c;
@@ -296,10 +391,35 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
     plan.emplace_back(sizing::size_kind_name(kind), kind);
     targets.push_back(config.triangles);
   }
+  const bool envelope_series = config.reference == ReferenceKind::envelope;
   for (int k = 1; k <= config.levels; ++k) {
     plan.emplace_back(fmt::format("level_{}", k), sizing::SizeKind::uniform);
-    targets.push_back(config.triangles * std::pow(config.factor, k));
+    // An envelope level's count is what its sizes predict, known once the compared meshes are made.
+    targets.push_back(envelope_series ? 0.0 : config.triangles * std::pow(config.factor, k));
   }
+  // The envelope series' wall sizes on the input (study/envelope.h), made from the compared meshes'
+  // surfaces once they exist; what they depend on (those surfaces, their interiors) in its key.
+  std::vector<double> envelope;
+  std::vector<double> compared_factors;
+  double envelope_factor = 1.0;
+  std::string envelope_key;
+  const auto make_envelope = [&]() {
+    std::vector<TriMesh> walls;
+    for (const MeshRun& done : result.meshes) {
+      if (done.series) continue;
+      const std::string wall_file = done.folder + "/surface.vtp";
+      walls.push_back(io::read_surface(wall_file).mesh);
+      envelope_key += fmt::format("compared {} {} interior {}\n", done.name, fingerprint(io::read_file(wall_file)),
+                                  done.interior_size);
+      compared_factors.push_back(done.interior_size);
+    }
+    std::vector<const TriMesh*> meshes;
+    for (const TriMesh& w : walls) meshes.push_back(&w);
+    reporter.info(fmt::format("study: the reference's sizes: the least of the {} compared meshes' at each point",
+                              meshes.size()));
+    envelope = envelope_sizes(surface, meshes);
+    envelope_factor = envelope_interior_factor(surface, meshes, compared_factors, envelope);
+  };
 
   int volume_target = 0;  // the first compared mesh's volume nodes, when the others are to have them
   for (size_t m = 0; m < plan.size(); ++m) {
@@ -311,9 +431,22 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
     run.folder = (fs::path(folder) / name).string();
     fs::create_directories(run.folder);
     const int volume_points = run.series ? 0 : volume_target;
-    const std::string mesh_key = fingerprint(common + fmt::format("kind={} triangles={} volume points={}\n",
-                                                                  sizing::size_kind_name(kind), run.target_triangles,
-                                                                  volume_points));
+    // An envelope level k: its sizes factor^k finer than the envelope's, its layer and interior too.
+    const bool envelope_level = run.series && envelope_series;
+    const double scale =
+        kEnvelopeMargin * std::pow(config.factor, m + 1 - static_cast<double>(config.kinds.size()));
+    if (envelope_level && envelope.empty()) make_envelope();
+    const LevelLayers layer_design =
+        envelope_level ? level_layers(config.layers, scale) : LevelLayers{config.layers, 1.0};
+    const volume::InteriorSizeOptions interior =
+        envelope_level ? level_interior(config.interior, envelope_factor, scale) : config.interior;
+    std::string what = fmt::format("kind={} triangles={} volume points={}\n", sizing::size_kind_name(kind),
+                                   run.target_triangles, volume_points);
+    if (envelope_level)
+      what = fmt::format("envelope level {} scale={} layers={} growth={} interior={} {} {}\n{}", name, scale,
+                         layer_design.layers, layer_design.growth, interior.factor, interior.gradation,
+                         interior.core_fraction, envelope_key);
+    const std::string mesh_key = fingerprint(common + what);
     const std::string flow_key = fingerprint(mesh_key + case_text);
     const std::string surface_file = run.folder + "/surface.vtp", volume_file = run.folder + "/volume.msh";
     const std::string flow_dir = run.folder + "/flow", stamp_file = run.folder + "/stamp.json";
@@ -327,20 +460,41 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       run.dofs = j["dofs"];
       run.min_dihedral = j["min_dihedral"];
       run.interior_size = j.value("interior_size", config.interior.factor);
+      run.target_triangles = j.value("target_triangles", run.target_triangles);
+      run.layers = j.value("layers", config.layers);
+      run.layer_growth = j.value("layer_growth", 1.0);
       for (const auto& [k, v] : j["seconds"].items()) run.seconds[k] = v.get<double>();
       run.reused = true;
       reporter.info(fmt::format("study: {} ({} of {}): reused from {}", name, m + 1, plan.size(), stamp_file));
     } else {
-      reporter.info(fmt::format("study: {} ({} of {}): surface mesh of about {:.0f} triangles", name, m + 1,
-                                plan.size(), run.target_triangles));
       step = Clock::now();
-      const sizing::SizeField field = sizing::make_size_field(
-          surface, {.kind = kind, .target_triangles = run.target_triangles},
-          {.curvature = &curvature, .distance = &distance}, reporter);
       remesh::RemeshOptions options;
       options.input_radius = &distance.radius;
-      const remesh::RemeshResult remeshed =
-          remesh::adapt_to_count(surface, field.metric, run.target_triangles, options, reporter);
+      remesh::RemeshResult remeshed;
+      if (envelope_level) {
+        std::vector<double> target(surface.points.size());
+        for (size_t v = 0; v < target.size(); ++v) target[v] = envelope[v] / scale;
+        const auto metric_of = [&](const std::vector<double>& sizes) {
+          std::vector<Sym3> metric(sizes.size());
+          for (size_t v = 0; v < metric.size(); ++v) metric[v] = sizing::isotropic_metric(sizes[v]);
+          return metric;
+        };
+        run.target_triangles = sizing::predicted_triangles(surface, metric_of(target));
+        reporter.info(fmt::format("study: {} ({} of {}): surface mesh {:.3g} times finer than every compared mesh, "
+                                  "about {:.0f} triangles",
+                                  name, m + 1, plan.size(), scale, run.target_triangles));
+        remeshed = remesh::adapt(surface, metric_of(target), options, reporter);
+        // Once more, the sizes asked corrected by what the first surface achieved (study/envelope.h).
+        remeshed = remesh::adapt(surface, metric_of(calibrated_sizes(surface, target, target, remeshed.mesh)),
+                                 options, reporter);
+      } else {
+        reporter.info(fmt::format("study: {} ({} of {}): surface mesh of about {:.0f} triangles", name, m + 1,
+                                  plan.size(), run.target_triangles));
+        const sizing::SizeField field = sizing::make_size_field(
+            surface, {.kind = kind, .target_triangles = run.target_triangles},
+            {.curvature = &curvature, .distance = &distance}, reporter);
+        remeshed = remesh::adapt_to_count(surface, field.metric, run.target_triangles, options, reporter);
+      }
       io::write_vtp(surface_file, remeshed.mesh);
       run.seconds["remesh"] = since(step);
 
@@ -350,12 +504,13 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       const centerline::DistanceMap wall_distance =
           centerline::distance_map(wall, centerline::extract(wall, {}, reporter));
       volume::VolumeOptions vo;
-      vo.layer.layers = config.layers;
+      vo.layer.layers = layer_design.layers;
+      vo.layer.growth = layer_design.growth;
       vo.layer.thickness_ratio = config.thickness_ratio;
       vo.layer.min_angle_deg = config.layer_angle;
       vo.layer.split_angle_deg = config.layer_split_angle;
       vo.algorithm = volume::parse_fill_algorithm(config.algorithm);
-      vo.interior = config.interior;
+      vo.interior = interior;
       vo.inlet = config.inlet;
       vo.end_names = config.end_names;
       vo.end_at = end_at;
@@ -398,6 +553,8 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       run.dofs = s.dofs;
       run.min_dihedral = quality.min_dihedral;
       run.interior_size = volume_mesh.report.interior_factor;
+      run.layers = layer_design.layers;
+      run.layer_growth = layer_design.growth;
       Json j = {{"key", flow_key},
                 {"mesh", name},
                 {"surface_triangles", run.surface_triangles},
@@ -407,6 +564,9 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
                 {"dofs", run.dofs},
                 {"min_dihedral", run.min_dihedral},
                 {"interior_size", run.interior_size},
+                {"target_triangles", run.target_triangles},
+                {"layers", run.layers},
+                {"layer_growth", run.layer_growth},
                 {"seconds", run.seconds}};
       io::write_text(stamp_file, j.dump(2) + "\n");
     }
@@ -423,6 +583,49 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
     result.meshes.push_back(run);
   }
   result.reference = static_cast<int>(result.meshes.size()) - 1;
+  result.time_step = base_case.steady ? 0.0 : base_case.dt;
+
+  // The time step's share (issue 46): the series' coarsest level's flow again at half the time step,
+  // saved at the same times; what that changes is the reference's temporal error's measure.
+  if (!base_case.steady && config.time_step_check && config.levels >= 1) {
+    const MeshRun& level = result.meshes[config.kinds.size()];
+    MeshRun half;
+    half.name = level.name + "_half_dt";
+    half.folder = (fs::path(folder) / half.name).string();
+    const std::string flow_dir = half.folder + "/flow", stamp_file = half.folder + "/stamp.json";
+    const std::string key = fingerprint(io::read_file(level.folder + "/stamp.json") + "time step / 2");
+    const std::optional<Json> stamp = matching_stamp(stamp_file, key);
+    if (stamp && fs::exists(flow_dir + "/wall.pvd")) {
+      for (const auto& [k, v] : (*stamp)["seconds"].items()) half.seconds[k] = v.get<double>();
+      half.reused = true;
+      reporter.info(fmt::format("study: {}: reused from {}", half.name, stamp_file));
+    } else {
+      reporter.info(fmt::format("study: {}: {}'s flow again at half the time step ({:g} s)", half.name, level.name,
+                                base_case.dt / 2));
+      const auto started = Clock::now();
+      fs::create_directories(flow_dir);
+      flow::FlowCase fc = base_case;
+      fc.mesh = level.folder + "/volume.msh";
+      flow::divide_time_step(fc, 2);
+      const std::string flow_key_file = flow_dir + "/study_flow_key";
+      const bool resume = fs::exists(flow_dir + "/checkpoint.bin") && fs::exists(flow_key_file) &&
+                          io::read_file(flow_key_file) == key;
+      io::write_text(flow_key_file, key);
+      const flow::SimulationSummary s = config.ranks > 1
+                                            ? simulate_under_mpirun(config, fc.mesh, flow_dir, resume, 2)
+                                            : flow::simulate(fc, flow_dir, "", reporter, resume);
+      if (s.status == "stopped")
+        throw StoppedError(fmt::format("stopped by signal {} in {}'s flow (its checkpoint is kept): run the same "
+                                       "study again to go on",
+                                       s.signal, half.name),
+                           s.signal);
+      half.seconds["flow"] = since(started);
+      io::write_text(stamp_file, Json{{"key", key}, {"mesh", half.name}, {"seconds", half.seconds}}.dump(2) + "\n");
+    }
+    half.dofs = level.dofs;
+    half.volume_points = level.volume_points;
+    result.half_step = half;
+  }
   if (const std::string w = volume_count_warning(result.meshes); !w.empty()) {
     reporter.warning(w);
     result.warnings.push_back(w);
@@ -438,7 +641,55 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
     for (const post::RingSpec& spec : result.rings) run.rings.push_back(post::cut_ring(wall.mesh, wall.wss, spec));
     run.points = post::probe_points(wall.mesh, wall.wss, config.points);
   }
+  if (result.half_step) {
+    MeshRun& half = *result.half_step;
+    const post::WallField wall = post::wall_at_time(post::read_wall_series(half.folder + "/flow"), result.time);
+    for (const post::RingSpec& spec : result.rings) half.rings.push_back(post::cut_ring(wall.mesh, wall.wss, spec));
+    half.points = post::probe_points(wall.mesh, wall.wss, config.points);
+  }
   result.seconds["wss on rings and points"] = since(step);
+
+  // Whole-wall measures (study/wall_difference.h): each mesh's WSS, TAWSS and OSI on the reference's wall.
+  step = Clock::now();
+  reporter.info("study: every mesh's wall fields on the reference's wall");
+  const post::WallField reference_wall = post::wall_at_time(reference_series, result.time);
+  result.reference_area = lumped_areas(reference_wall.mesh);
+  const std::optional<WallIndices> reference_indices = read_wall_indices(result.meshes.back().folder + "/flow");
+  for (MeshRun& run : result.meshes) {
+    const post::WallField wall = post::wall_at_time(post::read_wall_series(run.folder + "/flow"), result.time);
+    const WallMap map = map_onto(wall.mesh, reference_wall.mesh);
+    run.wss_on_reference = interpolate(map, wall.wss);
+    run.wall["wss"] = wall_difference(result.reference_area, run.wss_on_reference, reference_wall.wss);
+    const std::optional<WallIndices> indices = read_wall_indices(run.folder + "/flow");
+    if (!reference_indices || !indices) continue;
+    const WallMap index_map = map_onto(indices->mesh, reference_indices->mesh);
+    run.tawss_on_reference = interpolate(index_map, indices->tawss);
+    run.osi_on_reference = interpolate(index_map, indices->osi);
+    if (result.reference_index_area.empty()) result.reference_index_area = lumped_areas(reference_indices->mesh);
+    run.wall["tawss"] = wall_difference(result.reference_index_area, run.tawss_on_reference, reference_indices->tawss);
+    run.wall["osi"] = wall_difference(result.reference_index_area, run.osi_on_reference, reference_indices->osi);
+  }
+  if (result.half_step) {  // its fields on the reference's wall, for the time step's share of each measure
+    MeshRun& half = *result.half_step;
+    const post::WallField wall = post::wall_at_time(post::read_wall_series(half.folder + "/flow"), result.time);
+    half.wss_on_reference = interpolate(map_onto(wall.mesh, reference_wall.mesh), wall.wss);
+    const std::optional<WallIndices> indices = read_wall_indices(half.folder + "/flow");
+    if (reference_indices && indices) {
+      const WallMap index_map = map_onto(indices->mesh, reference_indices->mesh);
+      half.tawss_on_reference = interpolate(index_map, indices->tawss);
+      half.osi_on_reference = interpolate(index_map, indices->osi);
+    }
+  }
+  result.seconds["whole-wall differences"] = since(step);
+
+  // What every mesh resolves at each ring and point (study/resolution.h).
+  step = Clock::now();
+  reporter.info("study: the meshes' resolution at the rings and points");
+  result.places = measured_places(surface, distance.radius, result.rings, config.points);
+  for (MeshRun& run : result.meshes)
+    run.resolution = measure_resolution(io::read_surface(run.folder + "/surface.vtp").mesh,
+                                        io::read_volume(run.folder + "/volume.msh"), result.places);
+  result.seconds["resolution at the rings and points"] = since(step);
 
   // 7. The report (the total it states stops before it).
   result.seconds["total before the report"] = since(start);

@@ -3,11 +3,17 @@
 //  2. the four surface meshes (uniform, distance, curvature, anisotropic) with the same number
 //     of triangles (the sizing's target count, within its tolerance);
 //  3. their volume meshes with the boundary layer;
-//  4. a uniform refinement series (`levels` meshes of triangles x factor^k, k = 1..levels), the
-//     finest being the reference;
+//  4. a refinement series of `levels` meshes, the finest being the reference: by default (`kind =
+//     "envelope"`, study/envelope.h) level k is finer than every compared mesh everywhere, its
+//     wall's size the least of their achieved sizes / factor^k, its first layer height and interior
+//     likewise; `kind = "uniform"` (the seed paper's design) is uniform meshes of triangles x
+//     factor^k triangles;
 //  5. the flow case on every mesh;
 //  6. WSS at the chosen time on each ring and point; the relative difference of each ring's
-//     minimum and of each point's WSS against the reference;
+//     minimum and of each point's WSS against the reference; what every mesh resolves at each ring
+//     and point (study/resolution.h), so that a difference is called real only where the reference
+//     out-resolves the mesh there; and over the whole wall, each mesh's WSS (and TAWSS and OSI, pulsatile) against the reference's
+//     on the reference's wall (study/wall_difference.h);
 //  7. a report (study_report.h).
 // Each mesh's surface, volume and flow are kept in DIR/<mesh>/ with a stamp of what made them
 // (a hash of the input's bytes, the options, the case and its waveforms, the version): a step
@@ -18,7 +24,12 @@
 //   case = "flow.toml"         # a flow case; its `mesh` is replaced by each volume mesh
 //   triangles = 8000           # the four meshes' surface triangles
 //   meshes = ["uniform", "distance", "curvature", "anisotropic"]
-//   [reference] levels = 4, factor = 2.0
+//   [reference] kind = "envelope" (or "uniform"), levels = 3, factor = 1.33 (envelope: each level
+//               that many times finer in h than the one before, level 1 that many times finer than
+//               the finest compared mesh at every point: 1.33^3 = 2.35 times the volume nodes a
+//               level) or 2.0 (uniform: that many times the triangles a level), time_step_check =
+//               true (an unsteady case: level 1's flow again at half the time step, the time step's
+//               share of the reference's error beside its grid convergence)
 //   [volume]    layers = 4, thickness_ratio = 0.1, layer_angle = 0 (the paper's layer on every
 //               mesh: a layer thickened for its angles on some meshes only would confound the
 //               comparison; see volume/boundary_layer.h), layer_split_angle = 0 (5: the long
@@ -42,6 +53,8 @@
 #include "mesh/reporter.h"
 #include "post/ring.h"
 #include "sizing/size_field.h"
+#include "study/resolution.h"
+#include "study/wall_difference.h"
 #include "volume/volume_mesh.h"
 
 #include <map>
@@ -51,6 +64,11 @@
 
 namespace vesselmesh::study {
 
+enum class ReferenceKind { envelope, uniform };
+// "envelope", "uniform"; OptionError otherwise.
+ReferenceKind parse_reference_kind(const std::string& name);
+std::string reference_kind_name(ReferenceKind kind);
+
 struct StudyConfig {
   std::string path;        // the study file
   std::string surface;     // resolved against the study file's folder
@@ -59,8 +77,13 @@ struct StudyConfig {
   double triangles = 8000.0;
   std::vector<sizing::SizeKind> kinds = {sizing::SizeKind::uniform, sizing::SizeKind::distance,
                                          sizing::SizeKind::curvature, sizing::SizeKind::anisotropic};
-  int levels = 4;
-  double factor = 2.0;
+  ReferenceKind reference = ReferenceKind::envelope;
+  int levels = 3;
+  double factor = 1.33;  // envelope: in h; uniform: in triangles
+  // An unsteady case: the series' coarsest level's flow run again at half the time step, so that the
+  // report sets the time step's share of the reference's error beside the mesh's (`[reference]
+  // time_step_check`).
+  bool time_step_check = true;
   int layers = 4;
   double thickness_ratio = 0.1;
   double layer_angle = 0.0;        // degrees: volume::BoundaryLayerOptions::min_angle_deg
@@ -103,6 +126,15 @@ struct MeshRun {
   std::string folder = {};                     // DIR/<name>
   std::vector<post::Ring> rings = {};
   std::vector<post::PointProbe> points = {};
+  std::vector<PlaceResolution> resolution = {};  // per StudyResult::places
+  int layers = 0;              // the boundary layer's count and growth it was made with
+  double layer_growth = 1.0;
+  // Whole-wall differences from the reference (study/wall_difference.h): "wss" at the study's time,
+  // "tawss" and "osi" over the flows' last period where they wrote them; and the fields on the
+  // reference's wall they were measured from.
+  std::map<std::string, WallDifference> wall = {};
+  std::vector<Vec3> wss_on_reference = {};
+  std::vector<double> tawss_on_reference = {}, osi_on_reference = {};
 };
 
 struct StudyResult {
@@ -110,7 +142,15 @@ struct StudyResult {
   int reference = -1;           // index of the finest level
   double time = 0.0;            // s: when WSS was read
   std::vector<post::RingSpec> rings;
+  std::vector<Place> places;    // each ring, then each point: where the resolution is measured
+  // Per point of the reference's wall (at the study's time; of its indices' file): a third of the
+  // area of its triangles.
+  std::vector<double> reference_area, reference_index_area;
   std::string length_unit = "mm";
+  // The series' coarsest level run again at half the time step (unsteady cases, time_step_check):
+  // its rings, points and fields on the reference's wall.
+  std::optional<MeshRun> half_step;
+  double time_step = 0.0;  // s: the case's (0: steady)
   std::map<std::string, double> seconds;  // input analysis, post-processing, report, total
   std::vector<std::string> warnings;      // e.g. compared meshes off their triangle count
   std::string report_markdown, report_html;

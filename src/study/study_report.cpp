@@ -92,12 +92,15 @@ double ring_mean(const post::Ring& ring) {
   return length > 0.0 ? sum / length : ring.samples.empty() ? 0.0 : ring.samples.front().magnitude;
 }
 
-// The three finest meshes of the uniform family (the series and the compared uniform mesh when
-// its interior was made as the series' were), finest first; empty when there are fewer.
+// The three finest meshes of the reference's family, finest first; empty when there are fewer: the
+// envelope series, or the uniform family (the series and the compared uniform mesh when its
+// interior was made as the series' were).
 std::vector<const MeshRun*> convergence_grids(const StudyConfig& config, const std::vector<MeshRun>& meshes) {
   std::vector<const MeshRun*> family;
   for (const MeshRun& m : meshes)
-    if (m.series || (m.name == "uniform" && m.interior_size == config.interior.factor)) family.push_back(&m);
+    if (m.series || (config.reference == ReferenceKind::uniform && m.name == "uniform" &&
+                     m.interior_size == config.interior.factor))
+      family.push_back(&m);
   std::sort(family.begin(), family.end(),
             [](const MeshRun* a, const MeshRun* b) { return a->volume_points > b->volume_points; });
   if (family.size() < 3 || family[0]->volume_points <= family[1]->volume_points ||
@@ -123,13 +126,258 @@ std::string uncertainty(const GridConvergence& g) {
   return "n/a";
 }
 
+// How many times finer than the reference must be than a mesh at a place for a difference there to
+// be told from the reference's own error (issue 46).
+constexpr double kOutResolves = 1.3;
+
+// How many times finer the reference is than mesh m at place k, at its least over the place's
+// positions and the three measures (surface, first layer, interior); NaN when not measured.
+double outresolution(const MeshRun& m, const MeshRun& reference, size_t k) {
+  if (k >= m.resolution.size() || k >= reference.resolution.size()) return NAN;
+  const PlaceResolution& a = m.resolution[k];
+  const PlaceResolution& b = reference.resolution[k];
+  double least = NAN;
+  for (const double r : {least_ratio(a.surface, b.surface), least_ratio(a.first_height, b.first_height),
+                         least_ratio(a.interior, b.interior)})
+    if (std::isfinite(r) && !(r >= least)) least = r;
+  return least;
+}
+
+// The verdict on a difference where the reference may not out-resolve the mesh: "cannot tell" with
+// the reason, or the band's verdict.
+std::string resolved_verdict(const std::string& verdict, double ratio) {
+  if (std::isfinite(ratio) && ratio < kOutResolves)
+    return fmt::format("cannot tell: the reference only {:.2f}x as fine here", ratio);
+  return verdict;
+}
+
 // One quantity's differences of the compared meshes from the reference, for the summary.
 struct Ranked {
   std::string quantity;  // "ring NAME: minimum", "point NAME"
   std::vector<std::pair<std::string, double>> differences;  // per compared mesh, percent
   double band = NAN;         // the reference's uncertainty in the same percent (NaN: not known)
   std::string uncertainty;   // as a table cell
+  std::map<std::string, double> outresolved;  // per compared mesh: how many times finer the reference is there
+  bool whole_wall = false;   // a whole-wall measure (study/wall_difference.h)
+  double time_band = NAN;    // the reference's temporal error in the same percent (NaN: not measured)
 };
+
+// BDF2's error goes as dt^2: the run at dt is off the converged one by 4/3 of its difference from
+// the run at dt / 2.
+constexpr double kTimeErrorFactor = 4.0 / 3.0;
+
+// A verdict "larger" than the spatial band that the time step's error could explain: said so.
+std::string timed_verdict(const std::string& verdict, double difference, double time_error) {
+  if (verdict == "larger" && std::isfinite(time_error) && std::abs(difference) <= time_error)
+    return "within the time step's error";
+  return verdict;
+}
+
+// The level run at half the time step and the level it repeats (the series' first), or nulls.
+std::pair<const MeshRun*, const MeshRun*> time_pair(const StudyResult& result) {
+  if (!result.half_step) return {nullptr, nullptr};
+  for (const MeshRun& m : result.meshes)
+    if (m.series) return {&*result.half_step, &m};
+  return {nullptr, nullptr};
+}
+
+// The whole-wall temporal error of the reference in a field's L2 or P95 measure, over its mean.
+WallDifference time_step_wall(const StudyResult& result, const std::string& key) {
+  const auto [half, level] = time_pair(result);
+  const MeshRun& reference = result.meshes[result.reference];
+  if (!half || !reference.wall.count(key)) return {NAN, NAN, NAN};
+  const bool wss = key == "wss";
+  const std::vector<Vec3>* hv = wss ? &half->wss_on_reference : nullptr;
+  const std::vector<double>* hs = key == "tawss" ? &half->tawss_on_reference : &half->osi_on_reference;
+  const std::vector<double>* ls = key == "tawss" ? &level->tawss_on_reference : &level->osi_on_reference;
+  if (wss ? hv->empty() : hs->empty()) return {NAN, NAN, NAN};
+  const WallDifference d = wss ? wall_difference(result.reference_area, *hv, level->wss_on_reference)
+                               : wall_difference(result.reference_index_area, *hs, *ls);
+  const double mean = reference.wall.at(key).mean;
+  return {kTimeErrorFactor * d.l2 * d.mean / mean, kTimeErrorFactor * d.p95 * d.mean / mean, mean};
+}
+
+// The time step's share of the reference's error: the series' first level at dt and at dt / 2 at every
+// ring minimum and point, and over the whole wall; returns the same for study.json.
+Json time_step_section(Document& doc, const StudyConfig& config, const StudyResult& result, double dt) {
+  Json out = Json::array();
+  const auto [half, level] = time_pair(result);
+  if (!half) return out;
+  doc.heading("The time step's share");
+  std::vector<std::vector<std::string>> rows;
+  const auto add = [&](const std::string& quantity, double at_dt, double at_half, const std::string& unit) {
+    const double error = kTimeErrorFactor * std::abs(at_dt - at_half);
+    rows.push_back({quantity, number(at_dt), number(at_half), number(at_dt - at_half, 3), number(error, 3), unit});
+    out.push_back({{"quantity", quantity}, {"at_dt", at_dt}, {"at_half_dt", at_half}, {"time_step_error", error},
+                   {"unit", unit}});
+  };
+  for (size_t r = 0; r < result.rings.size(); ++r) {
+    const post::Ring& a = level->rings[r];
+    const post::Ring& b = half->rings[r];
+    add(fmt::format("ring {}: minimum", result.rings[r].name), a.samples[a.minimum].magnitude,
+        b.samples[b.minimum].magnitude, "Pa");
+  }
+  for (size_t p = 0; p < config.points.size(); ++p)
+    add("point " + config.points[p].name, level->points[p].value.norm(), half->points[p].value.norm(), "Pa");
+  for (const char* key : {"wss", "tawss", "osi"}) {
+    const WallDifference w = time_step_wall(result, key);
+    if (!std::isfinite(w.l2)) continue;
+    rows.push_back({fmt::format("whole wall: {} L2, P95", key), "-", "-", "-",
+                    fmt::format("{:.2f} %, {:.2f} %", 100 * w.l2, 100 * w.p95), "of the reference's mean"});
+    out.push_back({{"quantity", fmt::format("whole wall: {}", key)},
+                   {"time_step_error_l2_percent", 100 * w.l2},
+                   {"time_step_error_p95_percent", 100 * w.p95}});
+  }
+  doc.paragraph(fmt::format(
+      "{} run again at half the time step ({:g} s instead of {:g} s), saving at the same times: BDF2's error goes as "
+      "dt^2, so the run at dt is off the converged one by about 4/3 of its difference from the run at dt / 2. That "
+      "is the reference's temporal error (its time step is the same), set beside its spatial uncertainty: a "
+      "difference from the reference is called larger than its uncertainty only where it exceeds both.",
+      level->name, dt / 2, dt));
+  doc.table({"quantity", fmt::format("{} at dt", level->name), "at dt / 2", "difference", "temporal error (4/3 of it)",
+             "unit"},
+            rows);
+  return out;
+}
+
+// The whole-wall measures: per field (WSS at the study's time; TAWSS and OSI where the flows wrote
+// them) the L2 and 95th-percentile differences of each mesh from the reference on the reference's
+// wall, the reference's own uncertainty in each (the same measure between the series' finer levels,
+// through Richardson: the distance of level 2 from the reference e21 and of level 3 from level 2
+// e32 give the order, and 1.25 e21 / (r21^p - 1) bounds the reference's own distance from the
+// converged field), the rows for the summary's ranking; returns the same for study.json.
+Json whole_wall_section(Document& doc, const StudyResult& result,
+                        const std::vector<const MeshRun*>& grids, std::vector<Ranked>& ranked) {
+  Json out = Json::array();
+  const MeshRun& reference = result.meshes[result.reference];
+  if (!reference.wall.count("wss")) return out;
+  doc.heading("Over the whole wall against the reference");
+  const bool converges = grids.size() == 3 && grids[0] == &reference;
+  std::vector<std::vector<std::string>> rows;
+  const std::vector<std::pair<std::string, std::string>> fields = {
+      {"wss", fmt::format("WSS at t = {:g} s", result.time)}, {"tawss", "TAWSS"}, {"osi", "OSI"}};
+  for (const auto& [key, label] : fields) {
+    if (!reference.wall.count(key)) continue;
+    const double mean = reference.wall.at(key).mean;
+    // The coarse step of the series, level 3 against level 2, in the reference's mean.
+    WallDifference step{NAN, NAN, NAN};
+    if (converges && grids[2]->wall.count(key)) {
+      const std::vector<double>& area = key == "wss" ? result.reference_area : result.reference_index_area;
+      const WallDifference d =
+          key == "wss" ? wall_difference(area, grids[2]->wss_on_reference, grids[1]->wss_on_reference)
+          : key == "tawss" ? wall_difference(area, grids[2]->tawss_on_reference, grids[1]->tawss_on_reference)
+                           : wall_difference(area, grids[2]->osi_on_reference, grids[1]->osi_on_reference);
+      step = {d.l2 * d.mean / mean, d.p95 * d.mean / mean, mean};
+    }
+    for (const bool l2 : {true, false}) {
+      const std::string quantity = fmt::format("whole wall: {} {}", label, l2 ? "L2" : "95th percentile");
+      GridConvergence g;
+      g.found = false;
+      g.spread = NAN;
+      if (converges && grids[1]->wall.count(key)) {
+        const double e21 = l2 ? grids[1]->wall.at(key).l2 : grids[1]->wall.at(key).p95;
+        const double e32 = l2 ? step.l2 : step.p95;
+        if (std::isfinite(e21) && std::isfinite(e32))
+          g = grid_convergence(grids[0]->volume_points, grids[1]->volume_points, grids[2]->volume_points, 1.0,
+                               1.0 + e21, 1.0 + e21 + e32);
+      }
+      Ranked rank{quantity, {}, g.found ? 100.0 * g.band() : NAN,
+                  g.found ? fmt::format("{:.2f} %", 100.0 * g.band()) : converges ? g.status : "not estimated", {}, true};
+      const WallDifference in_time = time_step_wall(result, key);
+      rank.time_band = 100.0 * (l2 ? in_time.l2 : in_time.p95);
+      if (std::isfinite(rank.time_band)) rank.uncertainty += fmt::format(" (time step: {:.2f} %)", rank.time_band);
+      for (const MeshRun& m : result.meshes) {
+        if (&m == &reference || !m.wall.count(key)) continue;
+        const double d = 100.0 * (l2 ? m.wall.at(key).l2 : m.wall.at(key).p95);
+        if (!m.series) rank.differences.emplace_back(m.name, d);
+        const std::string verdict =
+            timed_verdict(!g.found ? "unknown" : d > 100.0 * g.band() ? "larger" : "within", d, rank.time_band);
+        rows.push_back({quantity, m.name, fmt::format("{:.2f} %", d), rank.uncertainty, verdict});
+        out.push_back({{"quantity", quantity},
+                       {"field", key},
+                       {"measure", l2 ? "L2" : "P95"},
+                       {"mesh", m.name},
+                       {"difference_percent", std::isfinite(d) ? Json(d) : Json(nullptr)},
+                       {"reference_mean", mean},
+                       {"reference_uncertainty_percent", g.found ? Json(100.0 * g.band()) : Json(nullptr)},
+                       {"order", g.found ? Json(g.order) : Json(nullptr)},
+                       {"convergence", g.status},
+                       {"beyond_uncertainty", verdict}});
+      }
+      ranked.push_back(rank);
+    }
+  }
+  doc.paragraph(fmt::format(
+      "Each mesh's field interpolated onto the reference's wall (at each of its points, the mesh wall's closest "
+      "point): the L2 norm of the difference and the area-weighted 95th percentile of its magnitude, over the "
+      "reference's mean (WSS as a vector; TAWSS and OSI over the flows' last period where they wrote them). Less "
+      "fragile than one ring's minimum or one point. The reference's uncertainty in the same measure is "
+      "Richardson's from the series' two finer steps ({}), 1.25 e21 / (r21^p - 1).",
+      converges ? fmt::format("{}, {} and {}", grids[0]->name, grids[1]->name, grids[2]->name)
+                : "not estimated: fewer than three levels"));
+  doc.table({"measure", "mesh", "difference (of the reference's mean)", "reference's uncertainty",
+             "beyond the reference's uncertainty"},
+            rows);
+  return out;
+}
+
+std::string times(double ratio) { return std::isfinite(ratio) ? fmt::format("{:.2f}x", ratio) : "n/a"; }
+
+// The table of what each mesh resolves at each ring and point, and the reference's ratio to it
+// (study/resolution.h); returns the same for study.json.
+Json resolution_section(Document& doc, const StudyResult& result) {
+  Json out = Json::array();
+  if (result.places.empty()) return out;
+  const MeshRun& reference = result.meshes[result.reference];
+  doc.heading("Resolution where the study measures");
+  std::vector<std::vector<std::string>> rows;
+  double least = NAN;
+  std::string least_where;
+  for (size_t k = 0; k < result.places.size(); ++k) {
+    for (const MeshRun& m : result.meshes) {
+      if (k >= m.resolution.size()) continue;
+      const PlaceResolution& r = m.resolution[k];
+      const bool is_reference = &m == &reference;
+      const double ratio = is_reference ? NAN : outresolution(m, reference, k);
+      if (!m.series && std::isfinite(ratio) && !(ratio >= least)) {
+        least = ratio;
+        least_where = fmt::format("{} at {}", m.name, result.places[k].name);
+      }
+      const auto ratio_of = [&](const std::vector<double>& a, const std::vector<double>& b) {
+        return is_reference ? std::string("-") : times(least_ratio(a, b));
+      };
+      rows.push_back({result.places[k].name, m.name, number(mean_of(r.surface), 3), number(mean_of(r.first_height), 3),
+                      number(mean_of(r.interior), 3), ratio_of(r.surface, reference.resolution[k].surface),
+                      ratio_of(r.first_height, reference.resolution[k].first_height),
+                      ratio_of(r.interior, reference.resolution[k].interior),
+                      is_reference ? "(reference)"
+                      : !std::isfinite(ratio) ? "not measured"
+                      : ratio >= kOutResolves ? "yes"
+                                              : "no"});
+      out.push_back({{"place", result.places[k].name},
+                     {"mesh", m.name},
+                     {"positions", result.places[k].positions.size()},
+                     {"surface_size", std::isfinite(mean_of(r.surface)) ? Json(mean_of(r.surface)) : Json(nullptr)},
+                     {"first_layer_height",
+                      std::isfinite(mean_of(r.first_height)) ? Json(mean_of(r.first_height)) : Json(nullptr)},
+                     {"interior_size", std::isfinite(mean_of(r.interior)) ? Json(mean_of(r.interior)) : Json(nullptr)},
+                     {"reference_finer_by", std::isfinite(ratio) ? Json(ratio) : Json(nullptr)}});
+    }
+  }
+  doc.paragraph(fmt::format(
+      "At each ring (positions round it) and point, each mesh's surface size (the mean size of its wall triangles in "
+      "their shortest direction, the side of the equilateral triangle of the same least altitude, within a fifth of "
+      "the local radius), the height of its first cells above the wall there, and its interior size (the mean edge "
+      "of its cells half a radius inward), in {}; and how many times finer the reference is than the mesh, at its "
+      "least over the place's positions. A difference from the reference is called beyond its uncertainty only where "
+      "the reference is at least {:.1f} times as fine in all three; elsewhere the report says it cannot tell. The "
+      "reference's least ratio to a compared mesh: {}{}.",
+      result.length_unit, kOutResolves, times(least), least_where.empty() ? "" : " (" + least_where + ")"));
+  doc.table({"place", "mesh", "surface size", "first layer height", "interior size", "reference finer: surface",
+             "first layer", "interior", "out-resolved"},
+            rows);
+  return out;
+}
 
 }  // namespace
 
@@ -147,9 +395,16 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
              "figure{margin:1em 0}figcaption{font-style:italic}pre{background:#f4f4f4;padding:.6em}</style>"
              "</head><body>\n";
   doc.heading("Impact of the mesh on wall shear stress", 1);
-  doc.paragraph(fmt::format("Vessel: {}. Flow case: {}. WSS read at t = {:g} s. Reference: {} (the finest of the "
-                            "uniform refinement series). Lengths in {}, stresses in Pa. vesselmesh {}.",
-                            config.surface, config.flow_case, result.time, reference.name, unit, VESSELMESH_VERSION));
+  doc.paragraph(fmt::format(
+      "Vessel: {}. Flow case: {}. WSS read at t = {:g} s. Reference: {} (the finest of the {}). Lengths in {}, "
+      "stresses in Pa. vesselmesh {}.",
+      config.surface, config.flow_case, result.time, reference.name,
+      config.reference == ReferenceKind::envelope
+          ? fmt::format("envelope series: level k's wall sizes the least of the compared meshes' achieved sizes at "
+                        "each point divided by {:g}^k, its first layer height and interior likewise",
+                        config.factor)
+          : "uniform refinement series",
+      unit, VESSELMESH_VERSION));
 
   for (const std::string& w : result.warnings) doc.paragraph("Warning: " + w + ".");
   // The summary goes here, made once every difference is known.
@@ -162,11 +417,14 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
                     fmt::format("{} ({:+.1f} %)", m.surface_triangles,
                                 100.0 * (m.surface_triangles / m.target_triangles - 1.0)),
                     std::to_string(m.surface_points),
-                    std::to_string(m.volume_points), number(m.interior_size, 3), std::to_string(m.tetrahedra),
-                    std::to_string(m.dofs), number(m.min_dihedral, 3)});
+                    std::to_string(m.volume_points), number(m.interior_size, 3),
+                    m.layer_growth == 1.0 ? std::to_string(m.layers)
+                                          : fmt::format("{} (growth {:.3f})", m.layers, m.layer_growth),
+                    std::to_string(m.tetrahedra), std::to_string(m.dofs), number(m.min_dihedral, 3)});
   doc.table({"mesh", "role", "target triangles", "surface triangles", "surface nodes", "volume nodes",
-             "interior size factor", "tetrahedra (prisms as 3)", "flow unknowns", "least dihedral (deg)"},
+             "interior size factor", "layers", "tetrahedra (prisms as 3)", "flow unknowns", "least dihedral (deg)"},
             rows);
+  const Json resolution = resolution_section(doc, result);
 
   // Fig. 11: WSS along each ring.
   for (size_t r = 0; r < result.rings.size(); ++r) {
@@ -213,8 +471,8 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
   if (grids.size() == 3 && grids[0] == &reference) {
     doc.heading("The reference's uncertainty (grid convergence)");
     doc.paragraph(fmt::format(
-        "Richardson extrapolation and Roache's Grid Convergence Index over the three finest uniform meshes ({}, {} and "
-        "{}: {}, {} and {} volume nodes), as in Celik et al., J. Fluids Eng. 130 (2008) 078001: the observed order p, "
+        "Richardson extrapolation and Roache's Grid Convergence Index over the three finest meshes of the reference's "
+        "series ({}, {} and {}: {}, {} and {} volume nodes), as in Celik et al., J. Fluids Eng. 130 (2008) 078001: the observed order p, "
         "the extrapolated value, and GCI_fine, the reference's relative uncertainty (a factor of safety of 1.25); the "
         "asymptotic ratio GCI32 / (r21^p GCI21) is near 1 when the series is in its asymptotic range.",
         grids[0]->name, grids[1]->name, grids[2]->name, grids[0]->volume_points, grids[1]->volume_points,
@@ -320,9 +578,12 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
                 profile_rows);
   } else {
     doc.heading("The reference's uncertainty (grid convergence)");
-    doc.paragraph("Not estimated: it needs three uniform meshes, the finest being the reference (the compared uniform "
-                  "mesh and [reference] levels >= 2, or levels >= 3). Without it, a difference from the reference cannot "
-                  "be told from the reference's own error.");
+    doc.paragraph(config.reference == ReferenceKind::uniform
+                      ? "Not estimated: it needs three uniform meshes, the finest being the reference (the compared "
+                        "uniform mesh and [reference] levels >= 2, or levels >= 3). Without it, a difference from the "
+                        "reference cannot be told from the reference's own error."
+                      : "Not estimated: it needs three levels of the envelope series ([reference] levels >= 3). "
+                        "Without it, a difference from the reference cannot be told from the reference's own error.");
   }
   const bool have_gci = !convergence.empty();
 
@@ -330,19 +591,29 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
     doc.heading("Minimum WSS on each ring against the reference");
     BarChart chart = difference_chart("Relative difference of the minimum WSS on each ring");
     std::vector<std::vector<std::string>> table;
-    std::vector<std::string> beyond, within, unknown;
+    std::vector<std::string> beyond, within, unknown, unresolved;
     for (size_t r = 0; r < result.rings.size(); ++r) {
       const post::Ring& ref_ring = reference.rings[r];
       const double ref_min = ref_ring.samples[ref_ring.minimum].magnitude, ref_mean = ring_mean(ref_ring);
       const GridConvergence& g = ring_min_gci[r];
       BarSeries s{"ring " + result.rings[r].name, {}};
       // The reference's uncertainty over its ring's mean, as the differences the summary ranks by.
-      Ranked rank{fmt::format("ring {}: minimum", result.rings[r].name), {}, NAN, "not estimated"};
+      Ranked rank{fmt::format("ring {}: minimum", result.rings[r].name), {}, NAN, "not estimated", {}, false};
       if (have_gci && ref_mean > 0.0 && g.found) {
         rank.band = 100.0 * g.band() / ref_mean;
         rank.uncertainty = fmt::format("{:.2f} %", rank.band);
       } else if (have_gci && ref_mean > 0.0 && std::isfinite(g.spread) && g.spread > 0.0) {
         rank.uncertainty = fmt::format(">= {:.2f} % (spread)", 100.0 * g.spread * std::abs(g.phi1) / ref_mean);
+      }
+      double time_error = NAN;  // Pa
+      if (const auto [half, level] = time_pair(result); half) {
+        const post::Ring& a = half->rings[r];
+        const post::Ring& b = level->rings[r];
+        time_error = kTimeErrorFactor * std::abs(a.samples[a.minimum].magnitude - b.samples[b.minimum].magnitude);
+        if (ref_mean > 0.0) {
+          rank.time_band = 100.0 * time_error / ref_mean;
+          rank.uncertainty += fmt::format(" (time step: {:.2f} %)", rank.time_band);
+        }
       }
       for (const MeshRun& m : meshes) {
         if (&m == &reference) continue;
@@ -353,11 +624,19 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
         double turn = std::fmod(least.angle - ref_ring.samples[ref_ring.minimum].angle + 540.0, 360.0) - 180.0;
         const double shift = ref_ring.closed ? turn / 360.0 * ref_ring.length
                                              : least.arc_length - ref_ring.samples[ref_ring.minimum].arc_length;
-        const std::string verdict = have_gci ? against_band(least.magnitude - ref_min, g) : "unknown";
+        const double finer = outresolution(m, reference, r);
+        const std::string verdict = resolved_verdict(
+            timed_verdict(have_gci ? against_band(least.magnitude - ref_min, g) : "unknown", least.magnitude - ref_min,
+                          time_error),
+            finer);
         if (!m.series) {
-          (verdict == "larger" ? beyond : verdict == "unknown" ? unknown : within)
+          (verdict == "larger"                ? beyond
+           : verdict.starts_with("cannot") ? unresolved
+           : verdict == "unknown"             ? unknown
+                                              : within)
               .push_back(fmt::format("{} on {}", m.name, result.rings[r].name));
           rank.differences.emplace_back(m.name, d_mean);
+          rank.outresolved[m.name] = finer;
         }
         s.values.push_back(d);
         table.push_back({result.rings[r].name, m.name, number(least.magnitude), number(ref_min), number(least.angle, 4),
@@ -387,10 +666,11 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
       doc.paragraph(fmt::format(
           "The compared meshes' ring minima that differ from the reference by more than the reference's own "
           "uncertainty (its GCI band): {}. Within it, so that the reference cannot tell them from itself: {}. Not known "
-          "(no order of convergence, and the difference larger than the series' own spread): {}. The position error "
+          "(no order of convergence, and the difference larger than the series' own spread): {}. Not told, the "
+          "reference there less than {:.1f} times as fine as the mesh: {}. The position error "
           "is the arc length from the reference's minimum to the mesh's; \"of the ring's mean\" is the difference over "
           "the reference ring's mean WSS, which stays meaningful where the minimum is near zero.",
-          listed(beyond), listed(within), listed(unknown)));
+          listed(beyond), listed(within), listed(unknown), kOutResolves, listed(unresolved)));
   }
   if (!config.points.empty()) {
     doc.heading("WSS at the points against the reference");
@@ -401,14 +681,27 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
       const GridConvergence& g = point_gci[p];
       BarSeries s{"point " + config.points[p].name, {}};
       Ranked rank{"point " + config.points[p].name, {}, have_gci && g.found ? 100.0 * g.gci_fine : NAN,
-                  have_gci ? uncertainty(g) : "not estimated"};
+                  have_gci ? uncertainty(g) : "not estimated", {}, false};
+      double time_error = NAN;  // Pa
+      if (const auto [half, level] = time_pair(result); half) {
+        time_error = kTimeErrorFactor * std::abs(half->points[p].value.norm() - level->points[p].value.norm());
+        if (ref > 0.0) {
+          rank.time_band = 100.0 * time_error / ref;
+          rank.uncertainty += fmt::format(" (time step: {:.2f} %)", rank.time_band);
+        }
+      }
       for (const MeshRun& m : meshes) {
         if (&m == &reference) continue;
         const double v = m.points[p].value.norm(), d = relative_difference(v, ref);
         const double d_ext = have_gci && g.found ? relative_difference(v, g.extrapolated) : NAN;
-        const std::string verdict = have_gci ? against_band(v - ref, g) : "unknown";
+        const double finer = outresolution(m, reference, result.rings.size() + p);
+        const std::string verdict =
+            resolved_verdict(timed_verdict(have_gci ? against_band(v - ref, g) : "unknown", v - ref, time_error), finer);
         s.values.push_back(d);
-        if (!m.series) rank.differences.emplace_back(m.name, d);
+        if (!m.series) {
+          rank.differences.emplace_back(m.name, d);
+          rank.outresolved[m.name] = finer;
+        }
         table.push_back({config.points[p].name, m.name, number(v), number(ref), percent(d), percent(d_ext),
                          have_gci ? uncertainty(g) : "n/a", verdict});
         numbers.push_back({{"what", "point"}, {"point", config.points[p].name}, {"mesh", m.name}, {"wss_Pa", v},
@@ -424,6 +717,8 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
                "beyond the reference's uncertainty"},
               table);
   }
+  const Json whole_wall = whole_wall_section(doc, result, grids, ranked);
+  const Json time_step = time_step_section(doc, config, result, result.time_step);
 
   // The summary, read first: the compared meshes ranked per quantity (closest to the reference
   // first), with the reference's uncertainty, then their mean place and their cost.
@@ -434,31 +729,40 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
     top.heading("Summary");
     Json rankings = Json::array();
     std::map<std::string, std::vector<int>> places;  // per compared mesh, its place per quantity
+    std::map<std::string, std::vector<int>> wall_places;  // the same over the whole-wall measures
     std::vector<std::vector<std::string>> ranking_rows;
     int known = 0;
     const auto key = [](double d) { return std::isfinite(d) ? std::abs(d) : INFINITY; };
     for (Ranked& q : ranked) {
       std::stable_sort(q.differences.begin(), q.differences.end(),
                        [&](const auto& a, const auto& b) { return key(a.second) < key(b.second); });
-      std::vector<std::string> order, beyond;
+      std::vector<std::string> order, beyond, untold;
       Json list = Json::array();
       for (size_t k = 0; k < q.differences.size(); ++k) {
         const auto& [name, d] = q.differences[k];
         places[name].push_back(static_cast<int>(k) + 1);
+        if (q.whole_wall) wall_places[name].push_back(static_cast<int>(k) + 1);
         order.push_back(fmt::format("{} ({})", name, percent(d)));
-        if (std::isfinite(q.band) && !(std::abs(d) <= q.band)) beyond.push_back(name);
+        const double finer = q.outresolved.count(name) ? q.outresolved.at(name) : NAN;
+        if (std::isfinite(finer) && finer < kOutResolves)
+          untold.push_back(fmt::format("{} (reference {})", name, times(finer)));
+        else if (std::isfinite(q.band) && !(std::abs(d) <= q.band) && !(std::abs(d) <= q.time_band))
+          beyond.push_back(name);
         list.push_back({{"mesh", name}, {"difference_percent", std::isfinite(d) ? Json(d) : Json(nullptr)},
                         {"place", k + 1}});
       }
       known += std::isfinite(q.band) ? 1 : 0;
       ranking_rows.push_back({q.quantity, fmt::format("{}", fmt::join(order, ", ")), q.uncertainty,
-                      !std::isfinite(q.band) ? "not known"
-                      : beyond.empty()       ? "none"
-                                             : fmt::format("{}", fmt::join(beyond, ", "))});
+                              !std::isfinite(q.band) ? "not known"
+                              : beyond.empty()       ? "none"
+                                                     : fmt::format("{}", fmt::join(beyond, ", ")),
+                              untold.empty() ? "none" : fmt::format("{}", fmt::join(untold, ", "))});
       rankings.push_back({{"quantity", q.quantity},
                           {"order", list},
                           {"reference_uncertainty_percent", std::isfinite(q.band) ? Json(q.band) : Json(nullptr)},
-                          {"beyond_uncertainty", beyond}});
+                          {"beyond_uncertainty", beyond},
+                          {"time_step_error_percent", std::isfinite(q.time_band) ? Json(q.time_band) : Json(nullptr)},
+                          {"not_out_resolved", untold}});
     }
     top.paragraph(
         "The compared meshes ranked by their difference from the reference, closest first, per quantity: at each "
@@ -468,30 +772,41 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
         "difference within it cannot be told from the reference's own error, and neither can the order of two "
         "meshes whose differences are closer than it.");
     top.table({"quantity", "closest to the reference first (difference)", "reference's uncertainty",
-               "meshes beyond it"},
+               "meshes beyond it", fmt::format("not told (reference under {:.1f}x as fine there)", kOutResolves)},
               ranking_rows);
     std::vector<std::vector<std::string>> cost;
-    std::vector<std::pair<double, std::string>> overall;
+    std::vector<std::pair<double, std::string>> overall, on_wall;
     Json means = Json::array();
+    const auto mean_of_places = [](const std::vector<int>& p) {
+      return p.empty() ? NAN
+                       : static_cast<double>(std::accumulate(p.begin(), p.end(), 0)) / static_cast<double>(p.size());
+    };
     for (const MeshRun& m : meshes) {
       if (m.series || &m == &reference) continue;
       const std::vector<int>& p = places[m.name];
-      const double mean =
-          p.empty() ? NAN : static_cast<double>(std::accumulate(p.begin(), p.end(), 0)) / static_cast<double>(p.size());
+      const double mean = mean_of_places(p), wall_mean = mean_of_places(wall_places[m.name]);
       const long first = std::count(p.begin(), p.end(), 1);
       const double flow = m.seconds.count("flow") ? m.seconds.at("flow") : NAN;
-      cost.push_back({m.name, number(mean, 3), std::to_string(first), std::to_string(m.dofs), number(flow, 3)});
+      cost.push_back({m.name, number(mean, 3), number(wall_mean, 3), std::to_string(first), std::to_string(m.dofs),
+                      number(flow, 3)});
       means.push_back({{"mesh", m.name}, {"mean_place", std::isfinite(mean) ? Json(mean) : Json(nullptr)},
+                       {"mean_place_whole_wall", std::isfinite(wall_mean) ? Json(wall_mean) : Json(nullptr)},
                        {"first_places", first}, {"dofs", m.dofs},
                        {"flow_seconds", std::isfinite(flow) ? Json(flow) : Json(nullptr)}});
       if (std::isfinite(mean)) overall.emplace_back(mean, m.name);
+      if (std::isfinite(wall_mean)) on_wall.emplace_back(wall_mean, m.name);
     }
-    std::stable_sort(overall.begin(), overall.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
-    top.table({"mesh", "mean place (1: closest)", "first places", "flow unknowns", "flow wall time (s)"}, cost);
-    std::vector<std::string> closest;  // the best mean place, ties together
-    for (const auto& [mean, name] : overall)
-      if (mean == overall.front().first) closest.push_back(name);
+    const auto best = [](std::vector<std::pair<double, std::string>>& v) {
+      std::stable_sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      std::vector<std::string> names;  // the best mean place, ties together
+      for (const auto& [mean, name] : v)
+        if (mean == v.front().first) names.push_back(name);
+      return names;
+    };
+    top.table({"mesh", "mean place (1: closest)", "mean place on the whole-wall measures", "first places",
+               "flow unknowns", "flow wall time (s)"},
+              cost);
+    const std::vector<std::string> closest = best(overall), closest_on_wall = best(on_wall);
     if (!overall.empty())
       top.paragraph(fmt::format(
           "Closest on average: {} (mean place {:.2f} over {} quantities). The reference's uncertainty is known for {} "
@@ -500,10 +815,13 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
           known == 0 ? ": without it these differences cannot be told from the reference's own error (see the grid "
                        "convergence section)."
                      : "."));
+    if (!on_wall.empty())
+      top.paragraph(fmt::format("Closest on the whole-wall measures alone: {} (mean place {:.2f}).",
+                                fmt::join(closest_on_wall, " and "), on_wall.front().first));
     doc.markdown.insert(summary_markdown, top.markdown);
     doc.html.insert(summary_html, top.html);
     summary = {{"rankings", rankings}, {"mean_place", means},
-               {"closest_on_average", closest}};
+               {"closest_on_average", closest}, {"closest_on_whole_wall", closest_on_wall}};
   }
 
   // Pictures: the compared surface meshes, and the WSS field on them and on the reference.
@@ -556,6 +874,11 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
     const auto seconds = [&](const char* k) { return m.seconds.count(k) ? number(m.seconds.at(k), 3) : "-"; };
     timing.push_back({m.name, seconds("remesh"), seconds("volume"), seconds("flow"), m.reused ? "reused" : "computed"});
   }
+  if (result.half_step) {
+    const MeshRun& h = *result.half_step;
+    timing.push_back({h.name, "-", "-", h.seconds.count("flow") ? number(h.seconds.at("flow"), 3) : "-",
+                      h.reused ? "reused" : "computed"});
+  }
   doc.table({"mesh", "surface mesh (s)", "volume mesh (s)", "flow (s)", "this run"}, timing);
   std::vector<std::vector<std::string>> steps;
   for (const auto& [name, s] : result.seconds) steps.push_back({name, number(s, 3)});
@@ -596,6 +919,10 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
   j["meshes"] = list;
   j["differences"] = numbers;
   j["grid_convergence"] = convergence;
+  j["reference_kind"] = reference_kind_name(config.reference);
+  j["whole_wall"] = whole_wall;
+  j["time_step"] = time_step;
+  j["resolution"] = resolution;
   j["summary"] = summary;
   j["seconds"] = result.seconds;
   j["warnings"] = result.warnings;

@@ -98,6 +98,22 @@ std::string program_alone(const test::TemporaryFolder& folder) {
   return alone;
 }
 
+// A study's reference asked wrongly (issue 46): a kind other than envelope or uniform, a factor of 1
+// or less, fewer than one level: exit 2, one line naming the file and the key, nothing made.
+TEST(Cli, StudyRefusesABadReferenceInOneLine) {
+  test::TemporaryFolder tmp;
+  for (const std::string bad : {"kind = \"finer\"", "factor = 1.0", "levels = 0"}) {
+    test::write_bytes(tmp.path("s.toml"), std::string("surface = \"") + VESSELMESH_DATA_DIR +
+                                              "/y_bifurcation.stl\"\ncase = \"flow.toml\"\n[reference]\n" + bad +
+                                              "\n[[point]]\nname = \"A\"\npoint = [0, 3, 0]\n");
+    const RunResult r = run({"study", tmp.path("s.toml"), "-o", tmp.path("out")});
+    EXPECT_EQ(r.code, 2) << bad << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("s.toml: reference."), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(tmp.path("out"))) << bad;
+  }
+}
+
 // Gmsh and PETSc are modules the program opens when a command needs them (io/gmsh_module.h,
 // flow/petsc_module.h). A copy of the program without them runs the commands that use neither;
 // one that needs Gmsh fails with exit 2, names the module and writes nothing (PETSc's: see

@@ -59,6 +59,20 @@ TEST(FlowCase, ReadsTheContractKeys) {
   EXPECT_NO_THROW(check_tags(c, {"wall", "inlet", "outlet_1"}));
 }
 
+// The study's time-step check: half the step, the same saved times.
+TEST(FlowCase, TimeStepDividedSavesAtTheSameTimes) {
+  FlowCase c = parse_case(kContract, "/cases/pipe/case.toml");
+  divide_time_step(c, 2);
+  EXPECT_DOUBLE_EQ(c.dt, 5e-4);
+  EXPECT_EQ(c.save_every, 20);
+  EXPECT_EQ(c.checkpoint_every, 20);
+  EXPECT_EQ(c.fluid_every, 20);
+  EXPECT_DOUBLE_EQ(c.end, 1.0);
+  EXPECT_THROW(divide_time_step(c, 0), OptionError);
+  c.steady = true;
+  EXPECT_THROW(divide_time_step(c, 2), OptionError);
+}
+
 TEST(FlowCase, PreconditionerReuseCanBeTurnedOff) {
   std::string text = kContract;
   text += "reuse_preconditioner = false\n";

@@ -12,30 +12,7 @@ namespace vesselmesh::post {
 namespace {
 
 // A box [0, 2] x [0, 1] x [0, 3] of n x n x n cubes, each cut into six tetrahedra (Kuhn).
-TetMesh box(int n) {
-  TetMesh mesh;
-  const Vec3 size(2.0, 1.0, 3.0);
-  auto id = [n](int i, int j, int k) { return (k * (n + 1) + j) * (n + 1) + i; };
-  for (int k = 0; k <= n; ++k)
-    for (int j = 0; j <= n; ++j)
-      for (int i = 0; i <= n; ++i) mesh.points.emplace_back(size.x() * i / n, size.y() * j / n, size.z() * k / n);
-  const int paths[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        for (const auto& path : paths) {
-          std::array<int, 3> at = {i, j, k};
-          Tet t{};
-          t[0] = id(at[0], at[1], at[2]);
-          for (int s = 0; s < 3; ++s) {
-            ++at[path[s]];
-            t[s + 1] = id(at[0], at[1], at[2]);
-          }
-          if (mesh::tet_volume6(mesh, t) < 0.0) std::swap(t[2], t[3]);
-          mesh.tets.push_back(t);
-        }
-  return mesh;
-}
+TetMesh box(int n) { return test::kuhn_box({n, n, n}, Vec3(2.0, 1.0, 3.0)); }
 
 Vec3 velocity_at(const Vec3& p) { return Vec3(p.x() + 2 * p.y(), 3 * p.z() - p.x(), 0.5 + p.y()); }
 double pressure_at(const Vec3& p) { return 3 * p.x() - p.z() + 7; }
