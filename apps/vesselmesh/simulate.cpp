@@ -30,10 +30,19 @@ int run(const Options& options, bool first) {
       flow::simulate(fc, options.output, options.petsc_options, reporter, options.restart);
   if (s.status == "stopped") return 128 + s.signal;
   if (!first) return 0;
-  reporter.info(fmt::format("{} {} steps, {} dofs, {} linear iterations, {:.3g} s per step, {:.1f} s in all; "
-                            "results in {}",
-                            s.status, s.steps, s.dofs, s.linear_iterations, s.seconds_per_step, s.seconds,
-                            options.output));
+  if (fc.steady)
+    reporter.info(fmt::format("{} in {} iterations, {} dofs, {} linear iterations, {:.1f} s in all ({:.1f} s set-up); "
+                              "results in {}",
+                              s.status, s.steps, s.dofs, s.linear_iterations, s.seconds, s.setup_seconds,
+                              options.output));
+  else
+    reporter.info(fmt::format(
+        "{} {} steps, {} dofs, {} linear iterations; set-up (reading, distributing) {:.2f} s, initial state {:.2f} s, "
+        "first step {:.3g} s, then {:.3g} s a step over {} settled steps ({:.3g} s a step per million unknowns); "
+        "{:.1f} s in all; results in {}",
+        s.status, s.steps, s.dofs, s.linear_iterations, s.setup_seconds, s.initial_seconds, s.first_step_seconds,
+        s.settled_step_seconds, s.settled_steps, s.dofs > 0 ? s.settled_step_seconds / (s.dofs * 1e-6) : 0.0,
+        s.seconds, options.output));
   if (options.common.json)
     print_json(Json{{"status", s.status},
                     {"points", s.points},
@@ -45,6 +54,11 @@ int run(const Options& options, bool first) {
                     {"linear_iterations", s.linear_iterations},
                     {"seconds", round_to(s.seconds, 4)},
                     {"seconds_per_step", round_to(s.seconds_per_step, 4)},
+                    {"setup_seconds", round_to(s.setup_seconds, 4)},
+                    {"initial_state_seconds", round_to(s.initial_seconds, 4)},
+                    {"first_step_seconds", round_to(s.first_step_seconds, 4)},
+                    {"settled_steps", s.settled_steps},
+                    {"settled_step_seconds", round_to(s.settled_step_seconds, 4)},
                     {"length_scale_m", s.length_scale},
                     {"solver", s.solver},
                     {"peak_memory_mb", s.peak_memory_mb},

@@ -467,6 +467,14 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     j["seconds_per_step"] = summary.seconds_per_step;
     j["seconds_per_step_per_million_dofs"] =
         summary.dofs > 0 ? summary.seconds_per_step / (summary.dofs * 1e-6) : 0.0;
+    if (!fc.steady) {
+      j["initial_state_seconds"] = summary.initial_seconds;
+      j["first_step_seconds"] = summary.first_step_seconds;
+      j["settled_steps"] = summary.settled_steps;
+      j["settled_step_seconds"] = summary.settled_step_seconds;
+      j["settled_seconds_per_step_per_million_dofs"] =
+          summary.dofs > 0 ? summary.settled_step_seconds / (summary.dofs * 1e-6) : 0.0;
+    }
     j["solver"] = summary.solver;
     j["petsc_options"] = fc.petsc_options;
     io::write_text(output_dir + "/summary.json", j.dump(2) + "\n");
@@ -661,6 +669,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
         const StepReport r = ns.start_from_stokes();
         reporter.info(fmt::format("initial state: the Stokes flow at t = {:g} s ({} linear iterations, {:.3g} s)",
                                   r.time, r.linear_iterations, r.seconds));
+        summary.initial_seconds = r.seconds;
       }
       if (first_step >= steps)
         reporter.warning(fmt::format("the checkpoint is at step {}, the case ends at step {}: nothing to do (a later "
@@ -673,6 +682,12 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
         summary.linear_iterations += r.linear_iterations;
         log_step(r);
         if (k == 0) summary.solver = ns.solver_description();
+        if (k == first_step) {
+          summary.first_step_seconds = r.seconds;
+        } else {
+          summary.settled_step_seconds += (r.seconds - summary.settled_step_seconds) / (summary.settled_steps + 1);
+          ++summary.settled_steps;
+        }
         std::vector<Vec3> tau;
         const bool in_window = r.time >= window_start - 0.5 * fc.dt;
         if (in_window) {

@@ -44,6 +44,12 @@ struct SimulationSummary {
   int points = 0, tetrahedra = 0, dofs = 0, ranks = 1;
   int steps = 0, saved = 0, linear_iterations = 0;
   double seconds = 0.0, seconds_per_step = 0.0, setup_seconds = 0.0;
+  // The run's parts, named (issue 49): setup_seconds is reading, distributing and setting up; the
+  // initial state (the Stokes start; 0 from rest or a checkpoint); this run's first step (its
+  // preconditioner built); the mean of its other steps ("settled", as bench/flow_scaling.sh times
+  // them; seconds_per_step above averages every step of the run).
+  double initial_seconds = 0.0, first_step_seconds = 0.0, settled_step_seconds = 0.0;
+  int settled_steps = 0;
   double length_scale = 1e-3;
   double indices_start = 0.0, indices_end = 0.0;  // s; the indices' window (equal: none written)
   std::string solver;

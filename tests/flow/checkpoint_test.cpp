@@ -18,6 +18,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 
 namespace vesselmesh::flow {
 namespace {
@@ -264,6 +265,35 @@ TEST(Simulate, SavesTheFluidVolumeEveryFluidEverySteps) {
   const Results ra = results_in(folder.path("a"), 2), rb = results_in(folder.path("b"), 2);
   EXPECT_EQ(ra.velocity, rb.velocity);
   EXPECT_EQ(ra.pressure, rb.pressure);
+}
+
+// Issue 49: the run's closing figures name their parts: the first step apart, the settled steps' mean
+// as bench/flow_scaling.sh takes it (log.csv's steps 2..N), in the summary and summary.json.
+TEST(Simulate, TheRunsFiguresNameTheirParts) {
+  const test::TemporaryFolder folder;
+  const SimulationSummary s = simulate(read_case(pipe_case(folder, 6, "")), folder.path("a"));
+  EXPECT_EQ(s.settled_steps, 5);
+  EXPECT_GT(s.first_step_seconds, 0.0);
+  EXPECT_GT(s.settled_step_seconds, 0.0);
+  double sum = 0.0;
+  int rows = 0;
+  std::istringstream log(io::read_file(folder.path("a/log.csv")));
+  std::string line;
+  std::getline(log, line);  // the header: seconds last
+  for (int row = 0; std::getline(log, line); ++row)
+    if (row > 0) {
+      sum += std::stod(line.substr(line.rfind(',') + 1));
+      ++rows;
+    }
+  ASSERT_EQ(rows, 5);
+  EXPECT_NEAR(s.settled_step_seconds, sum / rows, 1e-3 * s.settled_step_seconds + 1e-4);  // the log's 4 digits
+  const nlohmann::json j = nlohmann::json::parse(io::read_file(folder.path("a/summary.json")));
+  EXPECT_EQ(j["settled_steps"], 5);
+  EXPECT_DOUBLE_EQ(j["settled_step_seconds"].get<double>(), s.settled_step_seconds);
+  EXPECT_DOUBLE_EQ(j["first_step_seconds"].get<double>(), s.first_step_seconds);
+  EXPECT_TRUE(j.contains("initial_state_seconds"));
+  EXPECT_NEAR(j["settled_seconds_per_step_per_million_dofs"].get<double>(), s.settled_step_seconds / (s.dofs * 1e-6),
+              1e-9);
 }
 
 // Issue 29: a run stopped at step 8 of 12 (a case ending there, at a save) and restarted from its
