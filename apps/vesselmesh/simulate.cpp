@@ -41,7 +41,7 @@ int run(const Options& options, bool first) {
         "first step {:.3g} s, then {:.3g} s a step over {} settled steps ({:.3g} s a step per million unknowns); "
         "{:.1f} s in all; results in {}",
         s.status, s.steps, s.dofs, s.linear_iterations, s.setup_seconds, s.initial_seconds, s.first_step_seconds,
-        s.settled_step_seconds, s.settled_steps, s.dofs > 0 ? s.settled_step_seconds / (s.dofs * 1e-6) : 0.0,
+        s.settled_step_seconds, s.settled_steps, s.per_million_dofs(s.settled_step_seconds),
         s.seconds, options.output));
   if (options.common.json)
     print_json(Json{{"status", s.status},

@@ -465,15 +465,13 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     j["setup_seconds"] = summary.setup_seconds;
     j["seconds"] = summary.seconds;
     j["seconds_per_step"] = summary.seconds_per_step;
-    j["seconds_per_step_per_million_dofs"] =
-        summary.dofs > 0 ? summary.seconds_per_step / (summary.dofs * 1e-6) : 0.0;
+    j["seconds_per_step_per_million_dofs"] = summary.per_million_dofs(summary.seconds_per_step);
     if (!fc.steady) {
       j["initial_state_seconds"] = summary.initial_seconds;
       j["first_step_seconds"] = summary.first_step_seconds;
       j["settled_steps"] = summary.settled_steps;
       j["settled_step_seconds"] = summary.settled_step_seconds;
-      j["settled_seconds_per_step_per_million_dofs"] =
-          summary.dofs > 0 ? summary.settled_step_seconds / (summary.dofs * 1e-6) : 0.0;
+      j["settled_seconds_per_step_per_million_dofs"] = summary.per_million_dofs(summary.settled_step_seconds);
     }
     j["solver"] = summary.solver;
     j["petsc_options"] = fc.petsc_options;

@@ -50,6 +50,8 @@ struct SimulationSummary {
   // them; seconds_per_step above averages every step of the run).
   double initial_seconds = 0.0, first_step_seconds = 0.0, settled_step_seconds = 0.0;
   int settled_steps = 0;
+  // Seconds a step per million unknowns from a step's seconds (0 without unknowns).
+  double per_million_dofs(double step_seconds) const { return dofs > 0 ? step_seconds / (dofs * 1e-6) : 0.0; }
   double length_scale = 1e-3;
   double indices_start = 0.0, indices_end = 0.0;  // s; the indices' window (equal: none written)
   std::string solver;
