@@ -3,6 +3,7 @@
 #include "io/atomic_file.h"
 #include "post/wall_series.h"
 #include "study/chart.h"
+#include "study/envelope.h"
 #include "study/gci.h"
 #include "study/picture.h"
 #include "study/raster.h"
@@ -130,15 +131,20 @@ std::string uncertainty(const GridConvergence& g) {
 // be told from the reference's own error (issue 46).
 constexpr double kOutResolves = 1.3;
 
-// How many times finer the reference is than mesh m at place k, at its least over the place's
-// positions and the three measures (surface, first layer, interior); NaN when not measured.
+// How many times finer the reference is than mesh m at place k: the ratio of their mean sizes over
+// the place's positions (a single position's few cells scatter by 20-30 % with the triangles' shapes
+// and each mesh's own local radius), the least of the three measures (surface, first layer,
+// interior); NaN when not measured.
+double mean_ratio(const std::vector<double>& coarse, const std::vector<double>& fine) {
+  return mean_of(fine) > 0.0 ? mean_of(coarse) / mean_of(fine) : NAN;
+}
 double outresolution(const MeshRun& m, const MeshRun& reference, size_t k) {
   if (k >= m.resolution.size() || k >= reference.resolution.size()) return NAN;
   const PlaceResolution& a = m.resolution[k];
   const PlaceResolution& b = reference.resolution[k];
   double least = NAN;
-  for (const double r : {least_ratio(a.surface, b.surface), least_ratio(a.first_height, b.first_height),
-                         least_ratio(a.interior, b.interior)})
+  for (const double r : {mean_ratio(a.surface, b.surface), mean_ratio(a.first_height, b.first_height),
+                         mean_ratio(a.interior, b.interior)})
     if (std::isfinite(r) && !(r >= least)) least = r;
   return least;
 }
@@ -344,7 +350,9 @@ Json resolution_section(Document& doc, const StudyResult& result) {
         least_where = fmt::format("{} at {}", m.name, result.places[k].name);
       }
       const auto ratio_of = [&](const std::vector<double>& a, const std::vector<double>& b) {
-        return is_reference ? std::string("-") : times(least_ratio(a, b));
+        if (is_reference) return std::string("-");
+        return a.size() > 1 ? fmt::format("{} ({})", times(mean_ratio(a, b)), times(least_ratio(a, b)))
+                            : times(mean_ratio(a, b));
       };
       rows.push_back({result.places[k].name, m.name, number(mean_of(r.surface), 3), number(mean_of(r.first_height), 3),
                       number(mean_of(r.interior), 3), ratio_of(r.surface, reference.resolution[k].surface),
@@ -361,15 +369,20 @@ Json resolution_section(Document& doc, const StudyResult& result) {
                      {"first_layer_height",
                       std::isfinite(mean_of(r.first_height)) ? Json(mean_of(r.first_height)) : Json(nullptr)},
                      {"interior_size", std::isfinite(mean_of(r.interior)) ? Json(mean_of(r.interior)) : Json(nullptr)},
-                     {"reference_finer_by", std::isfinite(ratio) ? Json(ratio) : Json(nullptr)}});
+                     {"reference_finer_by", std::isfinite(ratio) ? Json(ratio) : Json(nullptr)},
+                     {"reference_finer_by_surface_least",
+                      is_reference || !std::isfinite(least_ratio(r.surface, reference.resolution[k].surface))
+                          ? Json(nullptr)
+                          : Json(least_ratio(r.surface, reference.resolution[k].surface))}});
     }
   }
   doc.paragraph(fmt::format(
       "At each ring (positions round it) and point, each mesh's surface size (the mean size of its wall triangles in "
       "their shortest direction, the side of the equilateral triangle of the same least altitude, within a fifth of "
       "the local radius), the height of its first cells above the wall there, and its interior size (the mean edge "
-      "of its cells half a radius inward), in {}; and how many times finer the reference is than the mesh, at its "
-      "least over the place's positions. A difference from the reference is called beyond its uncertainty only where "
+      "of its cells half a radius inward), in {}; and how many times finer the reference is than the mesh there: the "
+      "ratio of their mean sizes over the place (at a ring, in brackets, the least over its positions, which "
+      "scatters with the few cells a position sees). A difference from the reference is called beyond its uncertainty only where "
       "the reference is at least {:.1f} times as fine in all three; elsewhere the report says it cannot tell. The "
       "reference's least ratio to a compared mesh: {}{}.",
       result.length_unit, kOutResolves, times(least), least_where.empty() ? "" : " (" + least_where + ")"));
@@ -401,8 +414,8 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
       config.surface, config.flow_case, result.time, reference.name,
       config.reference == ReferenceKind::envelope
           ? fmt::format("envelope series: level k's wall sizes the least of the compared meshes' achieved sizes at "
-                        "each point divided by {:g}^k, its first layer height and interior likewise",
-                        config.factor)
+                        "each point divided by {:g} x {:g}^k, its first layer height and interior likewise",
+                        kEnvelopeMargin, config.factor)
           : "uniform refinement series",
       unit, VESSELMESH_VERSION));
 
