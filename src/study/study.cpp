@@ -167,6 +167,100 @@ std::optional<WallIndices> read_wall_indices(const std::string& flow_dir) {
   return w;
 }
 
+// Each mesh's WSS (and its TAWSS and OSI, where its flow wrote them) on the reference's wall, their
+// whole-wall differences from the reference's (study/wall_difference.h); the half-step run's fields too.
+void measure_whole_wall(StudyResult& result, const post::WallSeries& reference_series) {
+  const post::WallField reference_wall = post::wall_at_time(reference_series, result.time);
+  result.reference_area = lumped_areas(reference_wall.mesh);
+  const std::optional<WallIndices> reference_indices = read_wall_indices(result.meshes.back().folder + "/flow");
+  for (MeshRun& run : result.meshes) {
+    const post::WallField wall = post::wall_at_time(post::read_wall_series(run.folder + "/flow"), result.time);
+    const WallMap map = map_onto(wall.mesh, reference_wall.mesh);
+    run.wss_on_reference = interpolate(map, wall.wss);
+    run.wall["wss"] = wall_difference(result.reference_area, run.wss_on_reference, reference_wall.wss);
+    const std::optional<WallIndices> indices = read_wall_indices(run.folder + "/flow");
+    if (!reference_indices || !indices) continue;
+    const WallMap index_map = map_onto(indices->mesh, reference_indices->mesh);
+    run.tawss_on_reference = interpolate(index_map, indices->tawss);
+    run.osi_on_reference = interpolate(index_map, indices->osi);
+    if (result.reference_index_area.empty()) result.reference_index_area = lumped_areas(reference_indices->mesh);
+    run.wall["tawss"] = wall_difference(result.reference_index_area, run.tawss_on_reference, reference_indices->tawss);
+    run.wall["osi"] = wall_difference(result.reference_index_area, run.osi_on_reference, reference_indices->osi);
+  }
+  if (result.half_step) {  // its fields on the reference's wall, for the time step's share of each measure
+    MeshRun& half = *result.half_step;
+    const post::WallField wall = post::wall_at_time(post::read_wall_series(half.folder + "/flow"), result.time);
+    half.wss_on_reference = interpolate(map_onto(wall.mesh, reference_wall.mesh), wall.wss);
+    const std::optional<WallIndices> indices = read_wall_indices(half.folder + "/flow");
+    if (reference_indices && indices) {
+      const WallMap index_map = map_onto(indices->mesh, reference_indices->mesh);
+      half.tawss_on_reference = interpolate(index_map, indices->tawss);
+      half.osi_on_reference = interpolate(index_map, indices->osi);
+    }
+  }
+}
+
+// An envelope level's surface: the input remeshed to the envelope's sizes / scale, then once more
+// to sizes calibrated by what that first pass achieved (study/envelope.h); `predicted` the count the
+// sizes predict.
+remesh::RemeshResult remesh_envelope_level(const TriMesh& surface, const std::vector<double>& envelope, double scale,
+                                           const remesh::RemeshOptions& options, double& predicted,
+                                           const Reporter& reporter) {
+  std::vector<double> target(surface.points.size());
+  for (size_t v = 0; v < target.size(); ++v) target[v] = envelope[v] / scale;
+  const auto metric_of = [&](const std::vector<double>& sizes) {
+    std::vector<Sym3> metric(sizes.size());
+    for (size_t v = 0; v < metric.size(); ++v) metric[v] = sizing::isotropic_metric(sizes[v]);
+    return metric;
+  };
+  predicted = sizing::predicted_triangles(surface, metric_of(target));
+  reporter.info(fmt::format("study: the level's sizes predict about {:.0f} triangles", predicted));
+  const remesh::RemeshResult first = remesh::adapt(surface, metric_of(target), options, reporter);
+  return remesh::adapt(surface, metric_of(calibrated_sizes(surface, target, target, first.mesh)), options, reporter);
+}
+
+// The series' first level's flow again at half the time step, saving at the same times (its stamp
+// the level's with "time step / 2": reused when it matches).
+MeshRun run_half_step(const StudyConfig& config, const flow::FlowCase& base_case, const MeshRun& level,
+                      const std::string& folder, const Reporter& reporter) {
+  MeshRun half;
+  half.name = level.name + "_half_dt";
+  half.folder = (fs::path(folder) / half.name).string();
+  const std::string flow_dir = half.folder + "/flow", stamp_file = half.folder + "/stamp.json";
+  const std::string key = fingerprint(io::read_file(level.folder + "/stamp.json") + "time step / 2");
+  const std::optional<Json> stamp = matching_stamp(stamp_file, key);
+  if (stamp && fs::exists(flow_dir + "/wall.pvd")) {
+    for (const auto& [k, v] : (*stamp)["seconds"].items()) half.seconds[k] = v.get<double>();
+    half.reused = true;
+    reporter.info(fmt::format("study: {}: reused from {}", half.name, stamp_file));
+  } else {
+    reporter.info(fmt::format("study: {}: {}'s flow again at half the time step ({:g} s)", half.name, level.name,
+                              base_case.dt / 2));
+    const auto started = Clock::now();
+    fs::create_directories(flow_dir);
+    flow::FlowCase fc = base_case;
+    fc.mesh = level.folder + "/volume.msh";
+    flow::divide_time_step(fc, 2);
+    const std::string flow_key_file = flow_dir + "/study_flow_key";
+    const bool resume = fs::exists(flow_dir + "/checkpoint.bin") && fs::exists(flow_key_file) &&
+                        io::read_file(flow_key_file) == key;
+    io::write_text(flow_key_file, key);
+    const flow::SimulationSummary s = config.ranks > 1
+                                          ? simulate_under_mpirun(config, fc.mesh, flow_dir, resume, 2)
+                                          : flow::simulate(fc, flow_dir, "", reporter, resume);
+    if (s.status == "stopped")
+      throw StoppedError(fmt::format("stopped by signal {} in {}'s flow (its checkpoint is kept): run the same "
+                                     "study again to go on",
+                                     s.signal, half.name),
+                         s.signal);
+    half.seconds["flow"] = since(started);
+    io::write_text(stamp_file, Json{{"key", key}, {"mesh", half.name}, {"seconds", half.seconds}}.dump(2) + "\n");
+  }
+  half.dofs = level.dofs;
+  half.volume_points = level.volume_points;
+  return half;
+}
+
 }  // namespace
 
 ReferenceKind parse_reference_kind(const std::string& name) {
@@ -472,21 +566,9 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       options.input_radius = &distance.radius;
       remesh::RemeshResult remeshed;
       if (envelope_level) {
-        std::vector<double> target(surface.points.size());
-        for (size_t v = 0; v < target.size(); ++v) target[v] = envelope[v] / scale;
-        const auto metric_of = [&](const std::vector<double>& sizes) {
-          std::vector<Sym3> metric(sizes.size());
-          for (size_t v = 0; v < metric.size(); ++v) metric[v] = sizing::isotropic_metric(sizes[v]);
-          return metric;
-        };
-        run.target_triangles = sizing::predicted_triangles(surface, metric_of(target));
-        reporter.info(fmt::format("study: {} ({} of {}): surface mesh {:.3g} times finer than every compared mesh, "
-                                  "about {:.0f} triangles",
-                                  name, m + 1, plan.size(), scale, run.target_triangles));
-        remeshed = remesh::adapt(surface, metric_of(target), options, reporter);
-        // Once more, the sizes asked corrected by what the first surface achieved (study/envelope.h).
-        remeshed = remesh::adapt(surface, metric_of(calibrated_sizes(surface, target, target, remeshed.mesh)),
-                                 options, reporter);
+        reporter.info(fmt::format("study: {} ({} of {}): surface mesh {:.3g} times finer than every compared mesh",
+                                  name, m + 1, plan.size(), scale));
+        remeshed = remesh_envelope_level(surface, envelope, scale, options, run.target_triangles, reporter);
       } else {
         reporter.info(fmt::format("study: {} ({} of {}): surface mesh of about {:.0f} triangles", name, m + 1,
                                   plan.size(), run.target_triangles));
@@ -587,45 +669,8 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
 
   // The time step's share (issue 46): the series' coarsest level's flow again at half the time step,
   // saved at the same times; what that changes is the reference's temporal error's measure.
-  if (!base_case.steady && config.time_step_check && config.levels >= 1) {
-    const MeshRun& level = result.meshes[config.kinds.size()];
-    MeshRun half;
-    half.name = level.name + "_half_dt";
-    half.folder = (fs::path(folder) / half.name).string();
-    const std::string flow_dir = half.folder + "/flow", stamp_file = half.folder + "/stamp.json";
-    const std::string key = fingerprint(io::read_file(level.folder + "/stamp.json") + "time step / 2");
-    const std::optional<Json> stamp = matching_stamp(stamp_file, key);
-    if (stamp && fs::exists(flow_dir + "/wall.pvd")) {
-      for (const auto& [k, v] : (*stamp)["seconds"].items()) half.seconds[k] = v.get<double>();
-      half.reused = true;
-      reporter.info(fmt::format("study: {}: reused from {}", half.name, stamp_file));
-    } else {
-      reporter.info(fmt::format("study: {}: {}'s flow again at half the time step ({:g} s)", half.name, level.name,
-                                base_case.dt / 2));
-      const auto started = Clock::now();
-      fs::create_directories(flow_dir);
-      flow::FlowCase fc = base_case;
-      fc.mesh = level.folder + "/volume.msh";
-      flow::divide_time_step(fc, 2);
-      const std::string flow_key_file = flow_dir + "/study_flow_key";
-      const bool resume = fs::exists(flow_dir + "/checkpoint.bin") && fs::exists(flow_key_file) &&
-                          io::read_file(flow_key_file) == key;
-      io::write_text(flow_key_file, key);
-      const flow::SimulationSummary s = config.ranks > 1
-                                            ? simulate_under_mpirun(config, fc.mesh, flow_dir, resume, 2)
-                                            : flow::simulate(fc, flow_dir, "", reporter, resume);
-      if (s.status == "stopped")
-        throw StoppedError(fmt::format("stopped by signal {} in {}'s flow (its checkpoint is kept): run the same "
-                                       "study again to go on",
-                                       s.signal, half.name),
-                           s.signal);
-      half.seconds["flow"] = since(started);
-      io::write_text(stamp_file, Json{{"key", key}, {"mesh", half.name}, {"seconds", half.seconds}}.dump(2) + "\n");
-    }
-    half.dofs = level.dofs;
-    half.volume_points = level.volume_points;
-    result.half_step = half;
-  }
+  if (!base_case.steady && config.time_step_check && config.levels >= 1)
+    result.half_step = run_half_step(config, base_case, result.meshes[config.kinds.size()], folder, reporter);
   if (const std::string w = volume_count_warning(result.meshes); !w.empty()) {
     reporter.warning(w);
     result.warnings.push_back(w);
@@ -652,34 +697,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
   // Whole-wall measures (study/wall_difference.h): each mesh's WSS, TAWSS and OSI on the reference's wall.
   step = Clock::now();
   reporter.info("study: every mesh's wall fields on the reference's wall");
-  const post::WallField reference_wall = post::wall_at_time(reference_series, result.time);
-  result.reference_area = lumped_areas(reference_wall.mesh);
-  const std::optional<WallIndices> reference_indices = read_wall_indices(result.meshes.back().folder + "/flow");
-  for (MeshRun& run : result.meshes) {
-    const post::WallField wall = post::wall_at_time(post::read_wall_series(run.folder + "/flow"), result.time);
-    const WallMap map = map_onto(wall.mesh, reference_wall.mesh);
-    run.wss_on_reference = interpolate(map, wall.wss);
-    run.wall["wss"] = wall_difference(result.reference_area, run.wss_on_reference, reference_wall.wss);
-    const std::optional<WallIndices> indices = read_wall_indices(run.folder + "/flow");
-    if (!reference_indices || !indices) continue;
-    const WallMap index_map = map_onto(indices->mesh, reference_indices->mesh);
-    run.tawss_on_reference = interpolate(index_map, indices->tawss);
-    run.osi_on_reference = interpolate(index_map, indices->osi);
-    if (result.reference_index_area.empty()) result.reference_index_area = lumped_areas(reference_indices->mesh);
-    run.wall["tawss"] = wall_difference(result.reference_index_area, run.tawss_on_reference, reference_indices->tawss);
-    run.wall["osi"] = wall_difference(result.reference_index_area, run.osi_on_reference, reference_indices->osi);
-  }
-  if (result.half_step) {  // its fields on the reference's wall, for the time step's share of each measure
-    MeshRun& half = *result.half_step;
-    const post::WallField wall = post::wall_at_time(post::read_wall_series(half.folder + "/flow"), result.time);
-    half.wss_on_reference = interpolate(map_onto(wall.mesh, reference_wall.mesh), wall.wss);
-    const std::optional<WallIndices> indices = read_wall_indices(half.folder + "/flow");
-    if (reference_indices && indices) {
-      const WallMap index_map = map_onto(indices->mesh, reference_indices->mesh);
-      half.tawss_on_reference = interpolate(index_map, indices->tawss);
-      half.osi_on_reference = interpolate(index_map, indices->osi);
-    }
-  }
+  measure_whole_wall(result, reference_series);
   result.seconds["whole-wall differences"] = since(step);
 
   // What every mesh resolves at each ring and point (study/resolution.h).
