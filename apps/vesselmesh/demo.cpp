@@ -221,7 +221,8 @@ Command add_demo_command(CLI::App& parent) {
                                 {"min_dihedral_deg", round_to(volume_quality.min_dihedral, 4)}}},
                               {"flow",
                                {{"dofs", flow_summary.dofs},
-                                {"picard_iterations", flow_summary.steps},
+                                {"steady_method", "newton"},  // the default, as the demo's case leaves it
+                                {"steady_iterations", flow_summary.steps},
                                 {"linear_iterations", flow_summary.linear_iterations},
                                 {"seconds", round_to(flow_summary.seconds, 4)}}},
                               {"study", {{"report", study_result.report_html}, {"meshes", study_result.meshes.size()}}}};

@@ -124,12 +124,13 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
   c.steady_tolerance = r.number(time["steady_tolerance"], "time.steady_tolerance", c.steady_tolerance);
   c.steady_iterations = r.integer(time["steady_iterations"], "time.steady_iterations", c.steady_iterations, 1);
   c.picard = r.integer(time["picard"], "time.picard", 0, 0);
-  const std::string method = r.text(time["steady_method"], "time.steady_method", "picard");
+  const std::string method = r.text(time["steady_method"], "time.steady_method", "newton");
   if (method != "picard" && method != "pseudo-transient" && method != "newton")
     r.fail("time.steady_method",
            fmt::format("\"{}\" is not a steady method: give \"picard\", \"pseudo-transient\" or \"newton\"", method));
   c.pseudo_transient = method == "pseudo-transient";
   c.newton = method == "newton";
+  c.steady_method = method;
   const std::string initial = r.text(time["initial"], "time.initial", "rest");
   if (initial != "rest" && initial != "stokes")
     r.fail("time.initial", fmt::format("\"{}\" is not an initial state: give \"rest\" or \"stokes\"", initial));

@@ -201,9 +201,13 @@ struct NavierStokes::Impl {
   // Per assembly chunk, the largest cell CFL number of the last assembly with a time step (its
   // convecting velocity; 0 for a steady one), and their largest over the chunks and processes.
   std::vector<double> chunk_cfl;
+  std::vector<SteadyIteration> steady_history;  // NavierStokes::steady_history
   double assembled_cfl() const;
   // x: the state (velocity, pressure) per local point, the solver's interleaved rows.
   std::vector<double> state_rows(const std::vector<Vec3>& velocity, const std::vector<double>& pressure) const;
+  // The message of a steady solve that did not settle (its last change `change`): what was tried,
+  // where the residual went (steady_history), what to try next.
+  std::string not_settled(double change) const;
   // The steady residual ||A(w) w - b|| / ||b|| at the state `w` (rows as x's; the system
   // assembled at its velocity in Picard's form, which leaves the solver's matrix so).
   double steady_residual(const std::vector<double>& w);
@@ -1040,6 +1044,36 @@ StepReport NavierStokes::step() {
   return report;
 }
 
+std::string NavierStokes::Impl::not_settled(double change) const {
+  // What was tried, in the user's words, and the other methods to try next (running in time the last resort).
+  const std::string tried =
+      fc.newton ? fmt::format("Newton's method (the inflow in stages of {:g}, {:g} and {:g}, each step cut back until the "
+                              "residual fell)",
+                              kInflowStages[0], kInflowStages[1], kInflowStages[2])
+      : fc.pseudo_transient ? std::string("pseudo time steps (their length grown as the flow settled)")
+                            : std::string("Picard's iterations");
+  std::vector<std::string> next;
+  if (!fc.newton) next.push_back("time.steady_method = \"newton\"");
+  if (!fc.pseudo_transient) next.push_back("time.steady_method = \"pseudo-transient\"");
+  double first = -1.0, least = -1.0, last = -1.0;
+  for (const SteadyIteration& k : steady_history)
+    if (k.residual >= 0.0) {
+      if (first < 0.0) first = k.residual;
+      least = least < 0.0 ? k.residual : std::min(least, k.residual);
+      last = k.residual;
+    }
+  const std::string residuals =
+      last >= 0.0 ? fmt::format("; its residual went from {:.3g} to {:.3g} (least {:.3g})", first, last, least) : "";
+  return fmt::format("the steady solve by {} did not settle in {} iterations (last relative change {:.3g} > {:.3g}{}): "
+                     "the flow may be unsteady at this Reynolds number; try {}run the case in time (time.steady = "
+                     "false, to an end that washes out the start), or raise time.steady_iterations (summary.json's "
+                     "steady_history holds every iteration)",
+                     tried, fc.steady_iterations, change, fc.steady_tolerance, residuals,
+                     next.empty() ? std::string() : fmt::format("{}, ", fmt::join(next, " or ")));
+}
+
+const std::vector<SteadyIteration>& NavierStokes::steady_history() const { return impl_->steady_history; }
+
 StepReport NavierStokes::solve_steady() {
   Impl& s = *impl_;
   const auto start = Clock::now();
@@ -1048,6 +1082,8 @@ StepReport NavierStokes::solve_steady() {
   // stage's flow, to a loose change, extrapolated to the next one's start (below: the residual
   // there 0.06-0.2 instead of the 0.5 of the last stage's flow with the new inflow).
   size_t stage = s.fc.newton ? 0 : kInflowStages.size() - 1;
+  s.steady_history.clear();
+  int linear_before = 0;  // the linear iterations before this iteration's (report's are the solve's)
   const auto set_inflow = [&] {
     s.set_dirichlet(0.0);
     for (size_t row = 0; row < s.dirichlet.size(); ++row)
@@ -1122,6 +1158,14 @@ StepReport NavierStokes::solve_steady() {
                                  pseudo_dt > 0.0 ? fmt::format(", CFL {:.3g}", s.cfl(advect, pseudo_dt)) : "",
                                  residual >= 0.0 ? fmt::format("residual before it {:.3e}, ", residual) : "",
                                  report.change, report.linear_iterations));
+    s.steady_history.push_back({.iteration = iteration + 1,
+                                .method = iteration == 0 ? std::string("Stokes")
+                                                         : what + taken,
+                                .inflow = kInflowStages[stage],
+                                .residual = residual,
+                                .change = report.change,
+                                .linear_iterations = report.linear_iterations - linear_before});
+    linear_before = report.linear_iterations;
     advect = s.u;
     // Newton's iterations (fc.newton) from the first after the Stokes solve, on the convection;
     // after a whole step, with the stabilization's terms too (near the answer superlinear: 9, 99
@@ -1184,14 +1228,7 @@ StepReport NavierStokes::solve_steady() {
     }
     last_rate = used_dt > 0.0 ? report.change / used_dt : 0.0;
   }
-  if (!settled) {
-    const std::string advice = s.fc.pseudo_transient ? "run it in time, or raise time.steady_iterations"
-                                                     : "try time.steady_method = \"pseudo-transient\", run it in "
-                                                       "time, or raise time.steady_iterations";
-    throw ComputationError(fmt::format("the steady solve did not settle in {} iterations (last relative change "
-                                       "{:.3g} > {:.3g}): the flow may be unsteady at this Reynolds number; {}",
-                                       s.fc.steady_iterations, report.change, s.fc.steady_tolerance, advice));
-  }
+  if (!settled) throw ComputationError(s.not_settled(report.change));
   // The answer's residual: the steady system assembled at it once more (Picard's form).
   s.update_resistance(0.0);
   const auto assembly = Clock::now();

@@ -87,6 +87,20 @@ struct StepReport {
   std::string solver_reason;
 };
 
+// One iteration of a steady solve (NavierStokes::steady_history): what it was ("Stokes", "Newton",
+// "Newton on the convection", "Picard", "pseudo time step"; a step that raised the residual names
+// the linearization that replaced it), the share of the inflow it solved for, the steady residual
+// of the flow it started from (-1 for the first: none measured), the velocity's relative change it
+// made and its linear iterations.
+struct SteadyIteration {
+  int iteration = 0;
+  std::string method;
+  double inflow = 1.0;
+  double residual = -1.0;
+  double change = 0.0;
+  int linear_iterations = 0;
+};
+
 class NavierStokes {
  public:
   // Checks the case's tags against the mesh's (check_tags) and builds everything a step needs,
@@ -116,7 +130,11 @@ class NavierStokes {
   // falls (Armijo's test, the residual evaluated by an assembly at the trial flow); where none does,
   // the iteration again with the linearization below (Newton's on the convection, then Picard's).
   // The iteration has settled when Newton's whole step is under the tolerance at the whole inflow.
+  // A steady solve that does not settle in the case's steady_iterations is a ComputationError that
+  // names the method, where the residual went, and what to try next (another method, running in time).
   StepReport solve_steady();
+  // The last steady solve's iterations, one an iteration (also after it failed).
+  const std::vector<SteadyIteration>& steady_history() const;
   static constexpr double kPseudoCflStart = 5.0;
   static constexpr double kLeastStep = 1.0 / 16.0;
   // Newton's stages of the inflow (the Reynolds number), each to a change under kStageTolerance

@@ -453,6 +453,20 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     }
     j["steady"] = fc.steady;
     if (fc.steady && summary.steady_residual >= 0.0) j["steady_residual"] = summary.steady_residual;
+    if (fc.steady) {
+      j["steady_method"] = fc.steady_method;
+      // Every iteration (also of a solve that did not settle): what it was, the share of the inflow,
+      // the residual of the flow it started from (null for the first), the change it made.
+      nlohmann::ordered_json history = nlohmann::ordered_json::array();
+      for (const SteadyIteration& k : ns.steady_history()) {
+        nlohmann::ordered_json row = {{"iteration", k.iteration}, {"method", k.method}, {"inflow", k.inflow}};
+        row["residual"] = k.residual >= 0.0 ? nlohmann::ordered_json(k.residual) : nlohmann::ordered_json();
+        row["change"] = k.change;
+        row["linear_iterations"] = k.linear_iterations;
+        history.push_back(row);
+      }
+      j["steady_history"] = history;
+    }
     j["wss_method"] = fc.wss_method;
     if (!fc.steady) j["initial"] = fc.stokes_start ? "stokes" : "rest";
     if (fc.period > 0.0) j["period"] = fc.period;

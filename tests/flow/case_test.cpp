@@ -101,9 +101,21 @@ void expect_error(const std::string& text, const std::string& part) {
   }
 }
 
+std::string with(std::string text, const std::string& from, const std::string& to) {
+  text.replace(text.find(from), from.size(), to);
+  return text;
+}
+
+// Newton's method the default (issue 49); Picard's and pseudo time steps by name.
 TEST(FlowCase, SteadyMethodByName) {
   std::string text = kContract;
   EXPECT_FALSE(parse_case(text, "case.toml").pseudo_transient);
+  EXPECT_TRUE(parse_case(text, "case.toml").newton);
+  EXPECT_EQ(parse_case(text, "case.toml").steady_method, "newton");
+  const std::string picard = with(text, "steady = false", "steady = true\nsteady_method = \"picard\"");
+  EXPECT_FALSE(parse_case(picard, "case.toml").newton);
+  EXPECT_FALSE(parse_case(picard, "case.toml").pseudo_transient);
+  EXPECT_EQ(parse_case(picard, "case.toml").steady_method, "picard");
   text.replace(text.find("steady = false"), 14, "steady = true\nsteady_method = \"pseudo-transient\"");
   EXPECT_TRUE(parse_case(text, "case.toml").pseudo_transient);
   EXPECT_FALSE(parse_case(text, "case.toml").newton);
@@ -112,11 +124,6 @@ TEST(FlowCase, SteadyMethodByName) {
   EXPECT_FALSE(parse_case(text, "case.toml").pseudo_transient);
   text.replace(text.find("newton"), 6, "secant");
   expect_error(text, "time.steady_method");
-}
-
-std::string with(std::string text, const std::string& from, const std::string& to) {
-  text.replace(text.find(from), from.size(), to);
-  return text;
 }
 
 TEST(FlowCase, MistakesAreNamed) {
