@@ -553,6 +553,8 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       run.tetrahedra = j["tetrahedra"];
       run.dofs = j["dofs"];
       run.min_dihedral = j["min_dihedral"];
+      run.min_dihedral_layer = j.value("min_dihedral_layer", -1.0);
+      run.min_dihedral_interior = j.value("min_dihedral_interior", -1.0);
       run.interior_size = j.value("interior_size", config.interior.factor);
       run.target_triangles = j.value("target_triangles", run.target_triangles);
       run.layers = j.value("layers", config.layers);
@@ -634,6 +636,8 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       run.tetrahedra = quality.tets + 3 * quality.prisms;
       run.dofs = s.dofs;
       run.min_dihedral = quality.min_dihedral;
+      run.min_dihedral_layer = quality.min_dihedral_layer;
+      run.min_dihedral_interior = quality.min_dihedral_interior;
       run.interior_size = volume_mesh.report.interior_factor;
       run.layers = layer_design.layers;
       run.layer_growth = layer_design.growth;
@@ -645,6 +649,8 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
                 {"tetrahedra", run.tetrahedra},
                 {"dofs", run.dofs},
                 {"min_dihedral", run.min_dihedral},
+                {"min_dihedral_layer", run.min_dihedral_layer},
+                {"min_dihedral_interior", run.min_dihedral_interior},
                 {"interior_size", run.interior_size},
                 {"target_triangles", run.target_triangles},
                 {"layers", run.layers},

@@ -119,7 +119,10 @@ struct MeshRun {
   double target_triangles = 0.0;
   int surface_triangles = 0, surface_points = 0;
   int volume_points = 0, tetrahedra = 0, dofs = 0;
-  double min_dihedral = 0.0;  // degrees
+  double min_dihedral = 0.0;  // degrees, over all cells
+  // Degrees: the boundary layer's cells' and the interior's apart (-1: none, or a stamp from before
+  // they were kept).
+  double min_dihedral_layer = -1.0, min_dihedral_interior = -1.0;
   double interior_size = 1.0;  // the interior's size factor its volume was made with
   std::map<std::string, double> seconds = {};  // remesh, volume, flow (those of the run that made them)
   bool reused = false;                         // loaded from an earlier run
