@@ -113,7 +113,8 @@ class NavierStokes {
   // One time step (unsteady cases). A diverging step is a ComputationError naming
   // the step and the likely cause (CFL, backflow).
   StepReport step();
-  // Picard iterations from Stokes until the relative change is below the case's tolerance.
+  // The steady flow by the case's steady_method: Newton's (the default, last below), or Picard
+  // iterations from Stokes until the relative change is below the case's tolerance, or pseudo time steps.
   // With the case's pseudo_transient: from Stokes, backward-Euler pseudo time steps, the first
   // at a CFL number of kPseudoCflStart, the next ones longer while the change per unit pseudo
   // time falls (by its fall, within [1.2, 2] a step), shorter (at most 2x) when it rises
