@@ -208,6 +208,9 @@ struct NavierStokes::Impl {
   // The message of a steady solve that did not settle (its last change `change`): what was tried,
   // where the residual went (steady_history), what to try next.
   std::string not_settled(double change) const;
+  // Newton's stages: the flow settled at `stage` (u, p) extrapolated to the next stage's inflow, the
+  // start of its iterations (x too); stage_u, stage_p become this stage's flow (they held the last one's).
+  void start_next_stage(size_t stage, std::vector<Vec3>& stage_u, std::vector<double>& stage_p);
   // The steady residual ||A(w) w - b|| / ||b|| at the state `w` (rows as x's; the system
   // assembled at its velocity in Picard's form, which leaves the solver's matrix so).
   double steady_residual(const std::vector<double>& w);
@@ -1074,6 +1077,23 @@ std::string NavierStokes::Impl::not_settled(double change) const {
 
 const std::vector<SteadyIteration>& NavierStokes::steady_history() const { return impl_->steady_history; }
 
+void NavierStokes::Impl::start_next_stage(size_t stage, std::vector<Vec3>& stage_u, std::vector<double>& stage_p) {
+  // A secant through this stage's flow and the last one's (from rest, zero flow at zero inflow,
+  // for the first), taken to the next stage's inflow.
+  const auto& stages = NavierStokes::kInflowStages;
+  const double before = stage > 0 ? stages[stage - 1] : 0.0, now = stages[stage];
+  const double factor = (stages[stage + 1] - now) / (now - before);
+  for (int a = 0; a < n(); ++a) {
+    const Vec3 was = u[a];
+    const double was_p = p[a];
+    u[a] += factor * (was - stage_u[a]);
+    p[a] += factor * (was_p - stage_p[a]);
+    stage_u[a] = was;
+    stage_p[a] = was_p;
+  }
+  x = state_rows(u, p);
+}
+
 StepReport NavierStokes::solve_steady() {
   Impl& s = *impl_;
   const auto start = Clock::now();
@@ -1158,13 +1178,9 @@ StepReport NavierStokes::solve_steady() {
                                  pseudo_dt > 0.0 ? fmt::format(", CFL {:.3g}", s.cfl(advect, pseudo_dt)) : "",
                                  residual >= 0.0 ? fmt::format("residual before it {:.3e}, ", residual) : "",
                                  report.change, report.linear_iterations));
-    s.steady_history.push_back({.iteration = iteration + 1,
-                                .method = iteration == 0 ? std::string("Stokes")
-                                                         : what + taken,
-                                .inflow = kInflowStages[stage],
-                                .residual = residual,
-                                .change = report.change,
-                                .linear_iterations = report.linear_iterations - linear_before});
+    s.steady_history.push_back({iteration + 1, iteration == 0 ? std::string("Stokes") : what + taken,
+                                kInflowStages[stage], residual, report.change,
+                                report.linear_iterations - linear_before});
     linear_before = report.linear_iterations;
     advect = s.u;
     // Newton's iterations (fc.newton) from the first after the Stokes solve, on the convection;
@@ -1177,19 +1193,7 @@ StepReport NavierStokes::solve_steady() {
     // stage below the whole inflow when it is under kStageTolerance: the next stage from its flow.
     const double step_change = report.change / (lambda > 0.0 ? lambda : 1.0);
     if (stage + 1 < kInflowStages.size() && iteration > 0 && step_change < kStageTolerance) {
-      // The next stage's start: the flow extrapolated along the stages (a secant through this
-      // stage's flow and the last one's; from rest, zero flow at zero inflow, for the first).
-      const double before = stage > 0 ? kInflowStages[stage - 1] : 0.0, now = kInflowStages[stage];
-      const double factor = (kInflowStages[stage + 1] - now) / (now - before);
-      for (int a = 0; a < s.n(); ++a) {
-        const Vec3 u = s.u[a];
-        const double p = s.p[a];
-        s.u[a] += factor * (u - stage_u[a]);
-        s.p[a] += factor * (p - stage_p[a]);
-        stage_u[a] = u;
-        stage_p[a] = p;
-      }
-      s.x = s.state_rows(s.u, s.p);
+      s.start_next_stage(stage, stage_u, stage_p);
       advect = s.u;
       ++stage;
       set_inflow();

@@ -223,6 +223,21 @@ std::string pvd(const std::vector<std::pair<double, std::string>>& files, const 
   return text + "  </Collection>\n</VTKFile>\n";
 }
 
+// A steady solve's iterations for summary.json (also of a solve that did not settle): what each
+// was, the share of the inflow, the residual of the flow it started from (null for the first), the
+// change it made, its linear iterations.
+nlohmann::ordered_json history_json(const std::vector<SteadyIteration>& history) {
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (const SteadyIteration& k : history)
+    rows.push_back({{"iteration", k.iteration},
+                    {"method", k.method},
+                    {"inflow", k.inflow},
+                    {"residual", k.residual >= 0.0 ? nlohmann::ordered_json(k.residual) : nlohmann::ordered_json()},
+                    {"change", k.change},
+                    {"linear_iterations", k.linear_iterations}});
+  return rows;
+}
+
 }  // namespace
 
 std::map<std::string, std::string> end_logs(const std::string& log, const std::vector<std::string>& tags) {
@@ -455,17 +470,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     if (fc.steady && summary.steady_residual >= 0.0) j["steady_residual"] = summary.steady_residual;
     if (fc.steady) {
       j["steady_method"] = fc.steady_method;
-      // Every iteration (also of a solve that did not settle): what it was, the share of the inflow,
-      // the residual of the flow it started from (null for the first), the change it made.
-      nlohmann::ordered_json history = nlohmann::ordered_json::array();
-      for (const SteadyIteration& k : ns.steady_history()) {
-        nlohmann::ordered_json row = {{"iteration", k.iteration}, {"method", k.method}, {"inflow", k.inflow}};
-        row["residual"] = k.residual >= 0.0 ? nlohmann::ordered_json(k.residual) : nlohmann::ordered_json();
-        row["change"] = k.change;
-        row["linear_iterations"] = k.linear_iterations;
-        history.push_back(row);
-      }
-      j["steady_history"] = history;
+      j["steady_history"] = history_json(ns.steady_history());
     }
     j["wss_method"] = fc.wss_method;
     if (!fc.steady) j["initial"] = fc.stokes_start ? "stokes" : "rest";
