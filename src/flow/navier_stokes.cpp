@@ -219,6 +219,10 @@ struct NavierStokes::Impl {
   // state taken, `after` its steady residual. Returns lambda, or 0 when no step passed (x left as
   // Newton's, `after` -1).
   double line_search(double before, StepReport& report, double& after);
+  // A steady iteration's system assembled (the pseudo time step pseudo_dt, 0 for none), and the
+  // steady residual of the iterate x it starts from.
+  double residual_and_assemble(const std::vector<Vec3>& advect, const std::vector<Vec3>& history, double pseudo_dt,
+                               Linearization linearization);
   // Every boundary's flux (m3/s) of `velocity`, summed over the processes (every process calls it).
   std::vector<double> fluxes(const std::vector<Vec3>& velocity) const;
   // The resistance and rcr boundaries' pressure (over rho) as a function of their outflow in the
@@ -571,6 +575,19 @@ double NavierStokes::Impl::steady_residual(const std::vector<double>& w) {
   for (int a = 0; a < n(); ++a) velocity[a] = Vec3(w[kBlock * a], w[kBlock * a + 1], w[kBlock * a + 2]);
   assemble(velocity, std::vector<Vec3>(n(), Vec3::Zero()), 0.0, 0.0);
   return solver->relative_residual(rhs, w);
+}
+
+double NavierStokes::Impl::residual_and_assemble(const std::vector<Vec3>& advect, const std::vector<Vec3>& history,
+                                                 double pseudo_dt, Linearization linearization) {
+  // Before Newton's iterations the steady system's residual at the iterate, assembled in Picard's
+  // form as the line search measures its trial flows: Newton's own system gives the same
+  // ||A(u) u - b|| but relative to another ||b|| (4.5 % larger on the FDA nozzle at half its
+  // inflow, as much as Armijo's test asks of a step cut to 1/16).
+  const double newton = linearization != Linearization::picard ? steady_residual(x) : -1.0;
+  assemble(advect, history, pseudo_dt > 0.0 ? 1.0 / pseudo_dt : 0.0, pseudo_dt, linearization);
+  // Else the system assembled at the iterate, times it, less its right-hand side: the steady
+  // residual of the iterate (a pseudo time term cancels there).
+  return newton >= 0.0 ? newton : solver->relative_residual(rhs, x);
 }
 
 double NavierStokes::Impl::line_search(double before, StepReport& report, double& after) {
@@ -1141,18 +1158,9 @@ StepReport NavierStokes::solve_steady() {
     std::vector<Vec3> history = none;
     if (pseudo_dt > 0.0)
       for (int a = 0; a < s.n(); ++a) history[a] = s.u[a] / pseudo_dt;
-    // Before Newton's iterations the steady system's residual at the iterate, assembled in Picard's
-    // form as the line search measures its trial flows: Newton's own system gives the same
-    // ||A(u) u - b|| but relative to another ||b|| (4.5 % larger on the FDA nozzle at half its
-    // inflow, as much as Armijo's test asks of a step cut to 1/16).
-    const double newton_residual = iteration > 0 && level != Linearization::picard ? s.steady_residual(s.x) : -1.0;
-    s.assemble(advect, history, pseudo_dt > 0.0 ? 1.0 / pseudo_dt : 0.0, pseudo_dt, level);
+    const double residual = iteration > 0 ? s.residual_and_assemble(advect, history, pseudo_dt, level) : -1.0;
+    if (iteration == 0) s.assemble(advect, history, 0.0, 0.0, level);
     report.assembly_seconds += seconds_since(assembly);
-    // The system assembled at the iterate, times it, less its right-hand side: the steady
-    // residual of the iterate (a pseudo time term and Newton's terms cancel there).
-    const double residual = newton_residual >= 0.0 ? newton_residual
-                            : iteration > 0         ? s.solver->relative_residual(s.rhs, s.x)
-                                                    : -1.0;
     const auto name = [](Linearization l) {
       return l == Linearization::full         ? "Newton iteration"
              : l == Linearization::convection ? "Newton iteration on the convection"
