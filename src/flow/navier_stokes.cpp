@@ -221,8 +221,9 @@ struct NavierStokes::Impl {
   double line_search(double before, StepReport& report, double& after);
   // A steady iteration's system assembled (the pseudo time step pseudo_dt, 0 for none), and the
   // steady residual of the iterate x it starts from.
+  // (known: that residual where the last line search measured it at x, else -1.)
   double residual_and_assemble(const std::vector<Vec3>& advect, const std::vector<Vec3>& history, double pseudo_dt,
-                               Linearization linearization);
+                               Linearization linearization, double known);
   // Every boundary's flux (m3/s) of `velocity`, summed over the processes (every process calls it).
   std::vector<double> fluxes(const std::vector<Vec3>& velocity) const;
   // The resistance and rcr boundaries' pressure (over rho) as a function of their outflow in the
@@ -578,12 +579,12 @@ double NavierStokes::Impl::steady_residual(const std::vector<double>& w) {
 }
 
 double NavierStokes::Impl::residual_and_assemble(const std::vector<Vec3>& advect, const std::vector<Vec3>& history,
-                                                 double pseudo_dt, Linearization linearization) {
+                                                 double pseudo_dt, Linearization linearization, double known) {
   // Before Newton's iterations the steady system's residual at the iterate, assembled in Picard's
   // form as the line search measures its trial flows: Newton's own system gives the same
   // ||A(u) u - b|| but relative to another ||b|| (4.5 % larger on the FDA nozzle at half its
   // inflow, as much as Armijo's test asks of a step cut to 1/16).
-  const double newton = linearization != Linearization::picard ? steady_residual(x) : -1.0;
+  const double newton = linearization == Linearization::picard ? -1.0 : known >= 0.0 ? known : steady_residual(x);
   assemble(advect, history, pseudo_dt > 0.0 ? 1.0 / pseudo_dt : 0.0, pseudo_dt, linearization);
   // Else the system assembled at the iterate, times it, less its right-hand side: the steady
   // residual of the iterate (a pseudo time term cancels there).
@@ -1144,9 +1145,9 @@ StepReport NavierStokes::solve_steady() {
   std::vector<Vec3> advect(s.n(), Vec3::Zero()), none(s.n(), Vec3::Zero());
   std::vector<Vec3> stage_u(s.n(), Vec3::Zero());  // the last stage's flow (rest before the first)
   std::vector<double> stage_p(s.n(), 0.0);
-  // Pseudo time steps (pseudo_transient): the step length, 0 for a Picard iteration; the first
-  // iteration is the Stokes solve either way.
-  double pseudo_dt = 0.0, last_rate = 0.0, resume_dt = 0.0;
+  // Pseudo time steps (pseudo_transient): the step length, 0 for a Picard iteration (the first
+  // iteration the Stokes solve either way). known: the iterate's steady residual, where a line search measured it.
+  double pseudo_dt = 0.0, last_rate = 0.0, resume_dt = 0.0, known = -1.0;
   bool settled = false;
   using Linearization = Impl::Linearization;
   Linearization level = Linearization::picard;  // the Stokes solve, then Newton's (fc.newton) or Picard's
@@ -1158,7 +1159,7 @@ StepReport NavierStokes::solve_steady() {
     std::vector<Vec3> history = none;
     if (pseudo_dt > 0.0)
       for (int a = 0; a < s.n(); ++a) history[a] = s.u[a] / pseudo_dt;
-    const double residual = iteration > 0 ? s.residual_and_assemble(advect, history, pseudo_dt, level) : -1.0;
+    const double residual = iteration > 0 ? s.residual_and_assemble(advect, history, pseudo_dt, level, known) : -1.0;
     if (iteration == 0) s.assemble(advect, history, 0.0, 0.0, level);
     report.assembly_seconds += seconds_since(assembly);
     const auto name = [](Linearization l) {
@@ -1195,6 +1196,7 @@ StepReport NavierStokes::solve_steady() {
       if (lambda < 1.0) taken += fmt::format(", its step times {:g}", lambda);
     }
     report.change = s.take_solution(s.u, s.p);
+    known = reached;  // the state taken is the line search's last trial
     s.published = false;
     report.step = iteration + 1;
     s.check_finite(report);
@@ -1223,13 +1225,13 @@ StepReport NavierStokes::solve_steady() {
     const double step_change = report.change / (lambda > 0.0 ? lambda : 1.0);
     if (stage + 1 < kInflowStages.size() && iteration > 0 && step_change < kStageTolerance) {
       s.start_next_stage(stage, stage_u, stage_p);
+      known = -1.0;
       advect = s.u;
       ++stage;
       set_inflow();
       continue;
     }
-    // (Or, after Newton's step, when the residual it reached is under the tolerance: the iteration
-    // that would confirm it by its change is not needed.)
+    // (Or when the residual Newton's step reached is under the tolerance: no iteration to confirm it.)
     const bool small = stage + 1 == kInflowStages.size() &&
                        (step_change < s.fc.steady_tolerance || (reached >= 0.0 && reached < s.fc.steady_tolerance));
     if (!s.fc.pseudo_transient) {
