@@ -17,11 +17,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <set>
 #include <sstream>
 
 namespace {
@@ -125,14 +127,19 @@ int run(int argc, char** argv) {
   if (series.length_unit != "mm") throw InputError(fmt::format("{}: the mesh is in {}, not mm", results, series.length_unit));
   const post::FluidField field = post::read_fluid_frame(series.frames.back());
   const post::TetLocator locator(field.mesh);
+  // The wall's points: those of the volume the wall's own frame (DIR/wall.pvd) holds, matched by
+  // their coordinates (the volume's frames hold its tetrahedra only).
   std::vector<int> wall_points;
   {
-    std::vector<char> on_wall(field.mesh.points.size(), 0);
-    for (size_t t = 0; t < field.mesh.boundary.size(); ++t)
-      if (field.mesh.tag_names.at(field.mesh.boundary_tags[t]) == "wall")
-        for (int v : field.mesh.boundary[t]) on_wall[v] = 1;
-    for (size_t v = 0; v < on_wall.size(); ++v)
-      if (on_wall[v]) wall_points.push_back(static_cast<int>(v));
+    std::set<std::array<double, 3>> on_wall;
+    for (const Vec3& q : post::read_wall_frame(post::read_wall_series(results).frames.back()).mesh.points)
+      on_wall.insert({q.x(), q.y(), q.z()});
+    for (size_t v = 0; v < field.mesh.points.size(); ++v) {
+      const Vec3& q = field.mesh.points[v];
+      if (on_wall.count({q.x(), q.y(), q.z()})) wall_points.push_back(static_cast<int>(v));
+    }
+    if (wall_points.empty())
+      throw InputError(fmt::format("{}: no point of the wall's frame is a point of the volume's", results));
   }
   fmt::print("result: {} (t = {:g} s, {} points, {} tetrahedra); {} laboratories\n", results, field.time,
              field.mesh.points.size(), locator.tets().size(), labs.size());

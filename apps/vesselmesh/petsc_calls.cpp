@@ -68,6 +68,8 @@ SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::ve
 }
 
 void LinearSolver::set_residual_floor(double relative) { petsc_calls().set_residual_floor(*impl_->inside, relative); }
+void LinearSolver::set_residual_check(bool on) { petsc_calls().set_residual_check(*impl_->inside, on); }
+bool LinearSolver::sweep_velocity_blocks() { return petsc_calls().sweep_velocity_blocks(*impl_->inside); }
 void LinearSolver::scale_tolerance(double factor) { petsc_calls().scale_tolerance(*impl_->inside, factor); }
 
 double LinearSolver::relative_residual(const std::vector<double>& rhs, const std::vector<double>& x) {

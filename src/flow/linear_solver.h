@@ -42,6 +42,9 @@ struct SolveStats {
   bool converged = false;
   std::string reason;  // PETSc's converged reason, e.g. CONVERGED_RTOL or DIVERGED_ITS
   bool preconditioner_built = true;  // false: the previous solve's preconditioner served
+  // The Krylov method said converged but the true residual is far above the tolerance
+  // (LinearSolver::set_residual_check): converged is false, and reason says so.
+  bool true_residual_missed = false;
 };
 
 // The Schur complement of every default split below is preconditioned by a matrix the flow
@@ -54,10 +57,11 @@ struct SolveStats {
 // bench/steady_vessels.sh). A caller's `-pc_fieldsplit_schur_precondition selfp` has PETSc's again.
 //
 // Steady solves: GMRES (preconditioned on the right: the residual it tests is the system's) with
-// a Schur-complement field split, the velocity block by block-Jacobi
-// ILU, the Schur complement by hypre BoomerAMG (HMIS coarsening, ext+i
-// interpolation, strong threshold 0.6, aggressive coarsening on its first level: a hierarchy of
-// less memory, as many iterations and faster; at 1.4 M unknowns a time step took 4.81 s against 6.69,
+// a Schur-complement field split, the velocity block by block-Jacobi ILU(0) (where its factors are
+// unstable, the steady solve checks the true residual and goes on with SOR sweeps instead:
+// LinearSolver::set_residual_check, sweep_velocity_blocks), the Schur complement by hypre
+// BoomerAMG (HMIS coarsening, ext+i interpolation, strong threshold 0.6, aggressive coarsening on
+// its first level: a hierarchy of less memory, as many iterations and faster; at 1.4 M unknowns a time step took 4.81 s against 6.69,
 // the Stokes start 73 s against 107, 3172 MB against 3420; bench/flow_scaling.sh). Its tolerance is relative to the initial residual, which
 // a steady iteration's initial guess (the iterate) makes the steady equations' residual there: each
 // solve cuts it 1000-fold (an inexact Newton's forcing term of 1e-3; the Stokes solve from rest
@@ -265,6 +269,20 @@ class LinearSolver {
   // the options' tolerances): a nonlinear iteration whose tolerance is relative to the residual it
   // starts from then does nothing once that residual is small enough.
   void set_residual_floor(double relative);
+  // solve_assembled measures the true residual ||b - A x|| of a solve the Krylov method says
+  // converged (two products with A more a solve) and calls it not converged when that is over
+  // kTrueResidualSlack times the tolerance (its reason says so); off by default.
+  void set_residual_check(bool on);
+  static constexpr double kTrueResidualSlack = 10.0;
+  // The velocity block of a field split preconditioned block by block (block Jacobi) by ILU: each
+  // block by SOR sweeps from the next solve on, which cannot be unstable as ILU's factors can
+  // (Newton's velocity block on the FDA nozzle at Re 500: GMRES's recurrence said 4e-10 where the
+  // true residual was 21, 1.7e7 times ||b||, and Newton's steps went nowhere; with the sweeps 11
+  // Newton iterations to 7.7e-6 in 61 s on 186k unknowns, where Picard's crawled to 2.5e-4 in 42
+  // and 310 s). Where ILU holds it is the faster (the bifurcation aneurysm of
+  // bench/steady_vessels.sh at Re 300: 178 s against 339). Returns whether any block changed (on
+  // every process: collective); false before the first solve, which sets the blocks up.
+  bool sweep_velocity_blocks();
   // The next iterative solves' relative tolerance is the options' times `factor` (1: as given).
   void scale_tolerance(double factor);
 

@@ -974,6 +974,7 @@ void NavierStokes::Impl::make_solver() {
   // and does nothing once that residual is a hundredth of the change tolerance (of ||b||): the
   // last iterations cost nothing more, as they did when the tolerance was relative to ||b||.
   if (fc.steady) solver->set_residual_floor(1e-2 * fc.steady_tolerance);
+  solver->set_residual_check(fc.steady);
 }
 
 void NavierStokes::Impl::solve_system(StepReport& report, const std::string& where, bool direct_fallback,
@@ -985,6 +986,18 @@ void NavierStokes::Impl::solve_system(StepReport& report, const std::string& whe
   // iterative one would spend its 1000 iterations again).
   SolveStats stats =
       direct_fallback && direct_now ? solver->solve_assembled_direct(rhs, x) : solver->solve_assembled(rhs, x);
+  // An answer whose true residual missed (unstable ILU factors of the velocity block): again with
+  // SOR sweeps there, as the iterations after it (LinearSolver::sweep_velocity_blocks).
+  if (stats.true_residual_missed && solver->sweep_velocity_blocks()) {
+    reporter->warning(fmt::format("{}: the iterative solver's answer missed ({} after {} iterations): the velocity "
+                                  "block's ILU factors are unstable here; solved again with SOR sweeps instead of "
+                                  "them, and so the steady iterations after it",
+                                  where, stats.reason, stats.iterations));
+    const int iterative = stats.iterations;
+    initial_guess();
+    stats = solver->solve_assembled(rhs, x);
+    stats.iterations += iterative;
+  }
   if (!stats.converged && direct_fallback && !direct_now &&
       kBlock * total_points <= NavierStokes::kDirectFallbackUnknowns) {
     reporter->warning(fmt::format("{}: the iterative solver did not converge ({} after {} iterations): solved directly "

@@ -142,9 +142,11 @@ class NavierStokes {
   // but the last.
   static constexpr std::array<double, 3> kInflowStages = {0.25, 0.5, 1.0};
   static constexpr double kStageTolerance = 1e-2;
-  // A steady iteration's linear system the iterative solver does not converge on is solved
-  // directly (MUMPS) up to this many unknowns (its memory grows faster than they do), said in a
-  // warning; larger ones are a ComputationError as before.
+  // A steady iteration's linear system the iterative solver does not converge on (its true
+  // residual checked: an answer whose true residual missed is solved again with SOR sweeps on the
+  // velocity blocks first, LinearSolver::sweep_velocity_blocks) is solved directly (MUMPS) up to
+  // this many unknowns (its memory grows faster than they do), said in a warning; larger ones are a
+  // ComputationError as before.
   static constexpr int kDirectFallbackUnknowns = 300000;
   // An unsteady run's start from the Stokes flow of the conditions at the current time (one
   // linear solve, no advection; stabilized with the time steps' tau_M, so that its discrete

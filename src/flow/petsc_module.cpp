@@ -34,6 +34,8 @@ extern "C" __attribute__((visibility("default"))) const vesselmesh::flow::PetscC
         return solver.relative_residual(rhs, x);
       },
       [](LinearSolver& solver, double relative) { solver.set_residual_floor(relative); },
+      [](LinearSolver& solver, bool on) { solver.set_residual_check(on); },
+      [](LinearSolver& solver) { return solver.sweep_velocity_blocks(); },
       [](LinearSolver& solver, double factor) { solver.scale_tolerance(factor); },
       [](LinearSolver& solver, bool on) { solver.reuse_preconditioner(on); },
       [](LinearSolver& solver) { solver.rebuild_preconditioner(); },

@@ -41,6 +41,8 @@ struct PetscCalls {
   SolveStats (*solve_assembled_direct)(LinearSolver& solver, const std::vector<double>& rhs, std::vector<double>& x);
   double (*relative_residual)(LinearSolver& solver, const std::vector<double>& rhs, const std::vector<double>& x);
   void (*set_residual_floor)(LinearSolver& solver, double relative);
+  void (*set_residual_check)(LinearSolver& solver, bool on);
+  bool (*sweep_velocity_blocks)(LinearSolver& solver);
   void (*scale_tolerance)(LinearSolver& solver, double factor);
   void (*reuse_preconditioner)(LinearSolver& solver, bool on);
   void (*rebuild_preconditioner)(LinearSolver& solver);

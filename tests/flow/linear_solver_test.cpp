@@ -50,6 +50,48 @@ TEST(LinearSolver, SolvesWithTheCallersOptions) {
   EXPECT_EQ(poor.reason, "DIVERGED_ITS");
 }
 
+// GMRES tests the residual its recurrence estimates. A preconditioner that is not one linear
+// operator (here an inner Krylov solve of three iterations, as unstable factors are in effect)
+// leaves the true residual of its answer far above that estimate: with the check on, such a solve
+// did not converge, and its reason says by how much; off (the default), it is taken.
+TEST(LinearSolver, ASolveWhoseTrueResidualMissesTheToleranceDidNotConverge) {
+  const int n = 200;
+  std::vector<double> values;
+  const SparsePattern pattern = laplacian_pattern(n, values);
+  std::vector<double> exact(n), b(n, 0.0);
+  for (int i = 0; i < n; ++i) exact[i] = std::sin(0.1 * i) + 0.01 * i;
+  for (int i = 0; i < n; ++i)
+    for (int k = pattern.row_start[i]; k < pattern.row_start[i + 1]; ++k) b[i] += values[k] * exact[pattern.columns[k]];
+  const std::string varying = "-ksp_type gmres -ksp_pc_side right -ksp_rtol 1e-8 -ksp_max_it 400 -pc_type ksp "
+                              "-ksp_ksp_type gmres -ksp_ksp_max_it 3 -ksp_pc_type none";
+  const auto error = [&](const std::vector<double>& x) {
+    double worst = 0.0;
+    for (int i = 0; i < n; ++i) worst = std::max(worst, std::abs(x[i] - exact[i]));
+    return worst;
+  };
+  LinearSolver trusting(pattern, 1, saddle_point_options(), varying);
+  std::vector<double> x(n, 0.0);
+  const SolveStats taken = trusting.solve(values, b, x);
+  ASSERT_TRUE(taken.converged) << taken.reason;  // by GMRES's own estimate
+  EXPECT_GT(error(x), 1e-3);                      // but far from the answer
+
+  LinearSolver checking(pattern, 1, saddle_point_options(), varying);
+  checking.set_residual_check(true);
+  std::vector<double> y(n, 0.0);
+  const SolveStats refused = checking.solve(values, b, y);
+  EXPECT_FALSE(refused.converged);
+  EXPECT_NE(refused.reason.find("CONVERGED_RTOL by its own estimate"), std::string::npos) << refused.reason;
+  EXPECT_NE(refused.reason.find("but its true residual is"), std::string::npos) << refused.reason;
+
+  // A linear preconditioner: the check passes the same solve, and the answer is right.
+  LinearSolver sound(pattern, 1, saddle_point_options(), "-ksp_type gmres -ksp_rtol 1e-10 -pc_type jacobi");
+  sound.set_residual_check(true);
+  std::vector<double> z(n, 0.0);
+  const SolveStats good = sound.solve(values, b, z);
+  EXPECT_TRUE(good.converged) << good.reason;
+  EXPECT_LT(error(z), 1e-6);
+}
+
 TEST(LinearSolver, RefusedOptionsAreOptionErrors) {
   std::vector<double> values;
   const SparsePattern pattern = laplacian_pattern(10, values);
@@ -218,14 +260,20 @@ void saddle_solution(const SparsePattern& p, const std::vector<double>& values, 
         for (int j = 0; j < 4; ++j) b[4 * a + i] += saddle_value(p, values, a, i, k, j) * exact[4 * p.columns[k] + j];
 }
 
+// saddle_pattern's system on n points with saddle_solution's answer and right-hand side.
+struct SaddleSystem {
+  std::vector<double> values;
+  SparsePattern pattern;
+  std::vector<double> exact, b;
+  explicit SaddleSystem(int n) : pattern(saddle_pattern(n, values)) { saddle_solution(pattern, values, exact, b); }
+};
+
 // The field split holds the matrix as its field blocks (MatrixValues::split) and translates the
 // rows; the answer is the one matrix's (LU, no split) and the exact one.
 TEST(LinearSolver, FieldSplitBlocksSolveAsTheOneMatrix) {
   const int n = 60;
-  std::vector<double> values;
-  const SparsePattern pattern = saddle_pattern(n, values);
-  std::vector<double> exact, b;
-  saddle_solution(pattern, values, exact, b);
+  const SaddleSystem system(n);
+  const auto& [values, pattern, exact, b] = system;
   LinearSolver split(pattern, 4, time_step_options(), "-ksp_rtol 1e-12");
   LinearSolver one(pattern, 4, time_step_options(), "-ksp_type gmres -pc_type lu");
   EXPECT_TRUE(split.begin_assembly().split);
@@ -246,6 +294,35 @@ TEST(LinearSolver, FieldSplitBlocksSolveAsTheOneMatrix) {
   std::vector<double> x_direct(4 * n, 0.0);
   EXPECT_TRUE(split.solve_assembled_direct(b, x_direct).converged);
   for (int r = 0; r < 4 * n; ++r) EXPECT_NEAR(x_direct[r], exact[r], 1e-10) << "row " << r;
+}
+
+// The steady solver's velocity block, block-Jacobi ILU, turns to SOR sweeps when asked (after the
+// first solve has set the blocks up; once); the same answer after it. Nothing to turn in the time
+// steps' point-block Jacobi.
+TEST(LinearSolver, VelocityBlocksTurnFromIluToSweeps) {
+  const int n = 60;
+  const SaddleSystem system(n);
+  const auto& [values, pattern, exact, b] = system;
+  const std::string options = "-pc_fieldsplit_schur_precondition selfp -ksp_rtol 1e-12";
+  LinearSolver steady(pattern, 4, saddle_point_options(), options);
+  EXPECT_FALSE(steady.sweep_velocity_blocks());  // nothing set up yet
+  std::vector<double> x(4 * n, 0.0);
+  const SolveStats factored = steady.solve(values, b, x);
+  EXPECT_TRUE(factored.converged) << factored.reason;
+  EXPECT_TRUE(steady.sweep_velocity_blocks());
+  EXPECT_FALSE(steady.sweep_velocity_blocks());  // sweeps already
+  std::vector<double> y(4 * n, 0.0);
+  const SolveStats swept = steady.solve(values, b, y);
+  EXPECT_TRUE(swept.converged) << swept.reason;
+  EXPECT_TRUE(swept.preconditioner_built);
+  for (int r = 0; r < 4 * n; ++r) {
+    EXPECT_NEAR(x[r], exact[r], 1e-8) << "row " << r;
+    EXPECT_NEAR(y[r], exact[r], 1e-8) << "row " << r;
+  }
+  LinearSolver step(pattern, 4, time_step_options(), options);
+  std::vector<double> z(4 * n, 0.0);
+  EXPECT_TRUE(step.solve(values, b, z).converged);
+  EXPECT_FALSE(step.sweep_velocity_blocks());
 }
 
 namespace {
