@@ -986,29 +986,26 @@ void NavierStokes::Impl::solve_system(StepReport& report, const std::string& whe
   // iterative one would spend its 1000 iterations again).
   SolveStats stats =
       direct_fallback && direct_now ? solver->solve_assembled_direct(rhs, x) : solver->solve_assembled(rhs, x);
+  // A solve made again after one that failed, the warning saying why and how; the iterations of
+  // both counted.
+  const auto again = [&](const char* failed, const char* how, bool direct) {
+    reporter->warning(fmt::format("{}: the iterative solver {} ({} after {} iterations): {}", where, failed, stats.reason,
+                                  stats.iterations, how));
+    const int iterative = stats.iterations;
+    initial_guess();
+    stats = direct ? solver->solve_assembled_direct(rhs, x) : solver->solve_assembled(rhs, x);
+    stats.iterations += iterative;
+  };
   // An answer whose true residual missed (unstable ILU factors of the velocity block): again with
   // SOR sweeps there, as the iterations after it (LinearSolver::sweep_velocity_blocks).
-  if (stats.true_residual_missed && solver->sweep_velocity_blocks()) {
-    reporter->warning(fmt::format("{}: the iterative solver's answer missed ({} after {} iterations): the velocity "
-                                  "block's ILU factors are unstable here; solved again with SOR sweeps instead of "
-                                  "them, and so the steady iterations after it",
-                                  where, stats.reason, stats.iterations));
-    const int iterative = stats.iterations;
-    initial_guess();
-    stats = solver->solve_assembled(rhs, x);
-    stats.iterations += iterative;
-  }
+  if (stats.true_residual_missed && solver->sweep_velocity_blocks())
+    again("missed the answer", "the velocity block's ILU factors are unstable here; solved again with SOR sweeps "
+          "instead of them, and so the steady iterations after it", false);
   if (!stats.converged && direct_fallback && !direct_now &&
       kBlock * total_points <= NavierStokes::kDirectFallbackUnknowns) {
-    reporter->warning(fmt::format("{}: the iterative solver did not converge ({} after {} iterations): solved directly "
-                                  "(MUMPS's LU) instead, and so the steady iterations after it; the steady "
-                                  "preconditioner is weak where convection dominates",
-                                  where, stats.reason, stats.iterations));
     direct_now = true;
-    const int iterative = stats.iterations;
-    initial_guess();
-    stats = solver->solve_assembled_direct(rhs, x);
-    stats.iterations += iterative;
+    again("did not converge", "solved directly (MUMPS's LU) instead, and so the steady iterations after it; the "
+          "steady preconditioner is weak where convection dominates", true);
   }
   report.solve_seconds += seconds_since(start);
   report.linear_iterations += stats.iterations;
