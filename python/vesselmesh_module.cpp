@@ -11,6 +11,7 @@
 #include "centerline/extract.h"
 #include "flow/case.h"
 #include "flow/simulate.h"
+#include "io/atomic_file.h"
 #include "io/msh.h"
 #include "io/surface.h"
 #include "io/units.h"
@@ -24,6 +25,7 @@
 #include "remesh/adapt.h"
 #include "remesh/extend.h"
 #include "sizing/size_field.h"
+#include "study/study.h"
 #include "volume/volume_mesh.h"
 
 #include <fmt/format.h>
@@ -157,20 +159,40 @@ void add_value(toml::table& table, const std::string& key, const py::handle& val
   } else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
     table.insert_or_assign(key, to_array(value, key));
   } else {
-    throw InputError(fmt::format("case key \"{}\": a {} is not a TOML value (give numbers, strings, booleans, lists "
+    throw InputError(fmt::format("key \"{}\": a {} is not a TOML value (give numbers, strings, booleans, lists "
                                  "or dicts)",
                                  key, py::str(value.get_type().attr("__name__")).cast<std::string>()));
   }
 }
+// A dict of a file's keys as TOML text, for the file's own reader (its checks and messages).
+std::string toml_text(const py::dict& given) {
+  toml::table root;
+  for (const auto& [k, v] : given) add_value(root, py::str(k).cast<std::string>(), v);
+  std::ostringstream text;
+  text << root;
+  return text.str();
+}
+
 flow::FlowCase case_of(const py::object& given) {
   if (py::isinstance<py::str>(given)) return flow::read_case(given.cast<std::string>());
   if (!py::isinstance<py::dict>(given)) throw InputError("case: give a case file's path or a dict of its keys");
-  toml::table root;
-  for (const auto& [k, v] : given.cast<py::dict>()) add_value(root, py::str(k).cast<std::string>(), v);
-  std::ostringstream text;
-  text << root;
   // Paths in it (the mesh, waveforms) are taken from the working folder.
-  return flow::parse_case(text.str(), (std::filesystem::current_path() / "case (a dict)").string());
+  return flow::parse_case(toml_text(given.cast<py::dict>()), (std::filesystem::current_path() / "case (a dict)").string());
+}
+
+// A study file's path, or a dict of its keys: a dict is written as TOML into the output folder
+// (study_input.toml, which the report quotes) and its paths are taken from the working folder.
+study::StudyConfig study_of(const py::object& given, const std::string& output) {
+  if (py::isinstance<py::str>(given)) return study::read_study(given.cast<std::string>());
+  if (!py::isinstance<py::dict>(given)) throw InputError("study: give a study file's path or a dict of its keys");
+  const std::string text = toml_text(given.cast<py::dict>());
+  const std::filesystem::path cwd = std::filesystem::current_path();
+  study::StudyConfig config = study::parse_study(text, (cwd / "study (a dict)").string());
+  std::filesystem::create_directories(output);
+  config.path = (std::filesystem::path(output) / "study_input.toml").string();
+  io::write_text(config.path, fmt::format("# The study given to vesselmesh.study() as a dict; its paths are from {}\n{}\n",
+                                          cwd.string(), text));
+  return config;
 }
 
 // The centerlines and distance map of a surface (ValueError when it has no ends to trace between).
@@ -414,6 +436,23 @@ PYBIND11_MODULE(vesselmesh, m) {
       "{'mesh': 'volume.msh', 'time': {'steady': True}, 'boundary': [{'tag': 'inlet', 'type': 'velocity', 'flow': 1.0}, "
       "...]} (its paths from the working folder) — into the folder `output` (fluid.pvd, wall.pvd, log.csv, "
       "summary.json); `mesh` replaces its mesh. Returns the summary.");
+  m.def(
+      "study",
+      [](const py::object& study_given, const std::string& output) {
+        const study::StudyConfig config = study_of(study_given, output);
+        {
+          py::gil_scoped_release release;
+          study::run_study(config, output);
+        }
+        const std::string text = io::read_file((std::filesystem::path(output) / "study.json").string());
+        return py::module_::import("json").attr("loads")(text);
+      },
+      py::arg("study"), py::arg("output"),
+      "Runs the mesh-impact study — a study file (TOML, as `vesselmesh study`) or a dict of the same keys, e.g. "
+      "{'surface': 'vessel.stl', 'case': 'flow.toml', 'triangles': 4000, 'reference': {'levels': 1}, 'ring': "
+      "[{'name': 'inlet', 'point': [0, 0, -10]}]} (its paths from the working folder) — into the folder `output` "
+      "(report.html, report.md, study.json, a folder per mesh). Returns what study.json holds: 'meshes', "
+      "'differences', 'summary' (its 'rankings' and 'mean_place'), 'whole_wall', 'grid_convergence', ...");
   m.def(
       "wss_ring",
       [](const std::string& results, const std::vector<double>& point, const std::vector<double>& normal,

@@ -1,9 +1,21 @@
 #include "test_support.h"
 
+#include "io/atomic_file.h"
+#include "study/picture.h"
+#include "study/view3d.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <iostream>
+
 #include <atomic>
 #include <cctype>
 #include <fstream>
 #include <unistd.h>
+
+#include <fmt/format.h>
 
 namespace vesselmesh::test {
 
@@ -104,5 +116,104 @@ TetMesh kuhn_box(const std::array<int, 3>& cells, const Vec3& size) {
         }
   return mesh;
 }
+
+std::optional<DrawnViews> draw_in_chromium(const std::string& html_file, const std::string& query) {
+  const char* given = std::getenv("VESSELMESH_CHROMIUM");
+  const std::string chromium = given && *given ? given : "/usr/bin/chromium";
+  if (!fs::exists(chromium)) return std::nullopt;
+  TemporaryFolder tmp;
+  const std::string url = "file://" + fs::absolute(html_file).string() + query;
+  // Headless, software WebGL, no network: the report must need none.
+  const auto command = [&](int height, const std::string& action, const std::string& out) {
+    return fmt::format("'{}' --headless --no-sandbox --disable-gpu --enable-unsafe-swiftshader --disable-quic "
+                       "--no-first-run --disable-background-networking --disable-component-update --disable-sync "
+                       "--proxy-server=http://127.0.0.1:9 --host-resolver-rules='MAP * ~NOTFOUND' "
+                       "--user-data-dir='{}' --window-size=1000,{} --virtual-time-budget=30000 {} '{}' {} 2>>'{}'",
+                       chromium, tmp.path("profile"), height, action, url, out, tmp.path("log.txt"));
+  };
+  DrawnViews d;
+  const int dom = std::system(command(1200, "--dump-dom", "> '" + tmp.path("dom.html") + "'").c_str());
+  const std::string page = fs::exists(tmp.path("dom.html")) ? io::read_file(tmp.path("dom.html")) : "";
+  const size_t open = page.find("id=\"view3d-status\"");
+  const size_t from = open == std::string::npos ? open : page.find('>', open);
+  const size_t to = from == std::string::npos ? from : page.find("</pre>", from);
+  if (dom == 0 && to != std::string::npos) {
+    const std::string text = page.substr(from + 1, to - from - 1);
+    if (text != "pending") {
+      const nlohmann::json j = nlohmann::json::parse(text);
+      d.status_read = true;
+      d.drawn = j["drawn"].get<int>();
+      d.errors = j["errors"].get<std::vector<std::string>>();
+      d.rects = j["rects"].get<std::vector<std::array<int, 4>>>();
+    }
+  }
+  int bottom = 600;
+  for (const auto& r : d.rects) bottom = std::max(bottom, r[1] + r[3] + 10);
+  const std::string shot = tmp.path("shot.png");
+  if (std::system(command(bottom, "--screenshot='" + shot + "'", "> /dev/null").c_str()) == 0 && fs::exists(shot))
+    d.screenshot = study::read_png(shot);
+  d.log = fs::exists(tmp.path("log.txt")) ? io::read_file(tmp.path("log.txt")) : "";
+  return d;
+}
+
+namespace {
+
+// A pixel that the viridis scale, lit between 0.3 and 1.3 of its colour, explains (within 8 % a
+// channel); or the blue-white-red difference scale, so lit.
+bool in_scale(uint32_t pixel, bool difference) {
+  const Vec3 p(static_cast<double>((pixel >> 16) & 255), static_cast<double>((pixel >> 8) & 255),
+               static_cast<double>(pixel & 255));
+  for (int k = 0; k <= 64; ++k) {
+    const std::array<double, 3> v = difference ? study::diverging(k / 32.0 - 1.0) : study::viridis(k / 64.0);
+    const Vec3 c = 255.0 * Vec3(v[0], v[1], v[2]);
+    const double s = std::clamp(p.dot(c) / c.dot(c), 0.3, 1.3);
+    if ((p - s * c).cwiseAbs().maxCoeff() < 0.08 * 255.0) return true;
+  }
+  return false;
+}
+bool drawn(uint32_t pixel) {  // not the views' white background
+  return std::min({(pixel >> 16) & 255u, (pixel >> 8) & 255u, pixel & 255u}) < 250u;
+}
+bool wss_coloured(uint32_t pixel) { return drawn(pixel) && in_scale(pixel, false); }
+bool difference_coloured(uint32_t pixel) { return drawn(pixel) && in_scale(pixel, true); }
+
+}  // namespace
+
+double share_of_pixels(const study::Image& image, const std::array<int, 4>& rect, bool (*test)(uint32_t)) {
+  const int x0 = std::max(0, rect[0] + 3), y0 = std::max(0, rect[1] + 3);
+  const int x1 = std::min(image.width, rect[0] + rect[2] - 3), y1 = std::min(image.height, rect[1] + rect[3] - 3);
+  long all = 0, accepted = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      ++all;
+      accepted += test(image.at(x, y)) ? 1 : 0;
+    }
+  return all > 0 ? static_cast<double>(accepted) / static_cast<double>(all) : 0.0;
+}
+
+void expect_views_drawn(const std::string& html, int views) {
+  for (const std::string mode : {"", "=difference"}) {
+    const std::optional<DrawnViews> d = draw_in_chromium(html, "?view3d" + mode);
+    if (!d) GTEST_SKIP() << "Chromium is not installed (apt-get install chromium)";
+    ASSERT_TRUE(d->status_read) << d->log.substr(0, 3000);
+    EXPECT_TRUE(d->errors.empty()) << d->errors.front();
+    ASSERT_EQ(d->drawn, views);
+    ASSERT_EQ(static_cast<int>(d->rects.size()), views);
+    ASSERT_GT(d->screenshot.width, 0) << d->log.substr(0, 3000);
+    for (int k = 0; k < views; ++k) {
+      const bool difference = !mode.empty() && k + 1 < views;  // the reference (last) keeps its |WSS|
+      const double all = share_of_pixels(d->screenshot, d->rects[k], drawn);
+      const double scaled =
+          share_of_pixels(d->screenshot, d->rects[k], difference ? difference_coloured : wss_coloured);
+      EXPECT_GT(all, 0.03) << "view " << k << mode << ": no wall drawn";
+      EXPECT_GT(scaled, 0.85 * all) << "view " << k << mode << ": colours not of the scale (" << scaled << " of "
+                                    << all << " of the view)";
+      if (difference)  // the toggle turned the view from the |WSS| scale
+        EXPECT_LT(share_of_pixels(d->screenshot, d->rects[k], wss_coloured), 0.5 * all) << "view " << k << mode;
+      std::cout << "view " << k << mode << ": drawn " << all << " of the view, in the scale " << scaled << "\n";
+    }
+  }
+}
+
 
 }  // namespace vesselmesh::test

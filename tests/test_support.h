@@ -4,11 +4,15 @@
 
 #include "mesh/tetmesh.h"
 #include "mesh/trimesh.h"
+#include "study/raster.h"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace vesselmesh::test {
 
@@ -55,5 +59,29 @@ TriMesh unit_square(int n, bool flip = false);
 // its main diagonal (Kuhn's subdivision: neighbours share their faces' diagonals), positive; no
 // boundary triangles.
 TetMesh kuhn_box(const std::array<int, 3>& cells, const Vec3& size);
+
+// A study report's interactive 3D view (study/view3d.h) as headless Chromium draws it, the network
+// off (every host unresolvable, a dead proxy): the page opened with `query` (e.g. "?view3d"), its
+// status element read back from the DOM and a screenshot of the whole view taken. Nothing when
+// Chromium is not installed (/usr/bin/chromium, or $VESSELMESH_CHROMIUM).
+struct DrawnViews {
+  bool status_read = false;             // the page filled its status element
+  int drawn = 0;                        // views the page drew
+  std::vector<std::string> errors;      // the page's script errors
+  std::vector<std::array<int, 4>> rects;  // per view: x, y, width, height in CSS pixels (the screenshot's)
+  study::Image screenshot;
+  std::string log;                      // what Chromium printed on its error stream
+};
+std::optional<DrawnViews> draw_in_chromium(const std::string& html_file, const std::string& query);
+
+// The share of the pixels inside `rect` (inset by 3 pixels) that `test` accepts (a 0xAARRGGBB pixel).
+double share_of_pixels(const study::Image& image, const std::array<int, 4>& rect, bool (*test)(uint32_t));
+
+// The report's views as the browser draws them (issue 53), opened with "?view3d" and
+// "?view3d=difference": the page's status read, `views` views drawn without a script error, and in
+// each view's rectangle of the screenshot over 3 % of the pixels drawn (not the white background),
+// 85 % of those explained by the view's scale (viridis for |WSS|, lit; blue-white-red for the compared views' differences, the
+// reference (the last view) keeping its |WSS|). Skips the test where Chromium is not installed.
+void expect_views_drawn(const std::string& html_file, int views);
 
 }  // namespace vesselmesh::test

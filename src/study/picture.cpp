@@ -26,6 +26,14 @@ constexpr std::array<std::array<double, 3>, 9> kViridis = {{{0.267, 0.005, 0.329
                                                             {0.478, 0.821, 0.318}}};
 constexpr std::array<double, 3> kViridisTop = {0.993, 0.906, 0.144};
 
+
+std::string rgb(const std::array<double, 3>& c, double shade) {
+  const auto channel = [&](double v) { return static_cast<int>(std::lround(std::clamp(v * shade, 0.0, 1.0) * 255)); };
+  return fmt::format("#{:02x}{:02x}{:02x}", channel(c[0]), channel(c[1]), channel(c[2]));
+}
+
+}  // namespace
+
 std::array<double, 3> viridis(double t) {
   t = std::clamp(t, 0.0, 1.0) * 9.0;
   const int k = std::min(8, static_cast<int>(t));
@@ -35,12 +43,13 @@ std::array<double, 3> viridis(double t) {
   return {a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1]), a[2] + f * (b[2] - a[2])};
 }
 
-std::string rgb(const std::array<double, 3>& c, double shade) {
-  const auto channel = [&](double v) { return static_cast<int>(std::lround(std::clamp(v * shade, 0.0, 1.0) * 255)); };
-  return fmt::format("#{:02x}{:02x}{:02x}", channel(c[0]), channel(c[1]), channel(c[2]));
+Vec3 screen_up(const Vec3& view) {
+  // "Up" is the coordinate axis least along the view, made orthogonal to it.
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::abs(view[k]) < std::abs(view[axis])) axis = k;
+  return (Vec3::Unit(axis) - view.dot(Vec3::Unit(axis)) * view).normalized();
 }
-
-}  // namespace
 
 Vec3 broadside_view(const TriMesh& mesh) {
   if (mesh.points.empty()) return Vec3::UnitZ();
@@ -62,12 +71,7 @@ std::string surface_svg(const TriMesh& mesh, const std::vector<double>* scalar, 
   if (scalar && scalar->size() != mesh.points.size())
     throw InputError(fmt::format("picture \"{}\": {} values for {} points", o.title, scalar->size(), mesh.points.size()));
   const Vec3 view = o.view.value_or(broadside_view(mesh)).normalized();
-  // Screen axes: "up" is the coordinate axis least along the view, made orthogonal to it.
-  int axis = 0;
-  for (int k = 1; k < 3; ++k)
-    if (std::abs(view[k]) < std::abs(view[axis])) axis = k;
-  Vec3 up = Vec3::Unit(axis) - view.dot(Vec3::Unit(axis)) * view;
-  up.normalize();
+  const Vec3 up = screen_up(view);
   const Vec3 right = up.cross(view);
   // Fit the drawing into the picture (room left for the title and the colour bar).
   double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;

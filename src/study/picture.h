@@ -6,6 +6,7 @@
 
 #include "mesh/trimesh.h"
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,13 @@ struct PictureOptions {
 // The direction of least spread of the points (the last principal axis): looking along it
 // shows the vessel broadside.
 Vec3 broadside_view(const TriMesh& mesh);
+
+// The viridis colour map at t in [0, 1] (clamped), as RGB in [0, 1].
+std::array<double, 3> viridis(double t);
+
+// The pictures' screen "up" when looking along `view` (unit): the coordinate axis least along the
+// view, made orthogonal to it.
+Vec3 screen_up(const Vec3& view);
 
 // `scalar`: one value per point, or null for a grey mesh.
 std::string surface_svg(const TriMesh& mesh, const std::vector<double>* scalar, const PictureOptions& options);

@@ -9,6 +9,7 @@
 #include "study/gci.h"
 #include "study/picture.h"
 #include "study/raster.h"
+#include "study/view3d.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -104,6 +105,66 @@ std::string dihedral_verdict(const std::vector<MeshRun>& meshes) {
                      "layers about 9 % as high as the wall's edges are long); inside, an angle under the bound is a "
                      "sliver ('vesselmesh quality' measures a volume mesh's layer and interior apart).",
                      bounds, fmt::format("{}", fmt::join(below, ", ")));
+}
+
+// The interactive 3D view of the pictured walls (the compared meshes, the reference last; issue 53):
+// HTML only, the Markdown says where it is. Without three.js on the machine, both say so.
+void view_section(Document& doc, const StudyConfig& config, const std::vector<const MeshRun*>& pictured,
+                  const std::vector<post::WallField>& walls, double high, const Vec3& view, const std::string& unit,
+                  const Reporter& reporter) {
+  doc.heading("Interactive 3D view");
+  const std::optional<ThreeScripts> scripts = read_three_scripts();
+  if (!scripts) {
+    doc.paragraph("No interactive 3D view: three.js was not found when the report was written (apt-get install "
+                  "libjs-three, or set VESSELMESH_THREE_DIR to a folder with three.min.js and "
+                  "examples/js/controls/OrbitControls.js).");
+    reporter.warning("study: no interactive 3D view in report.html (three.js not found: apt-get install libjs-three)");
+    return;
+  }
+  ViewScene scene;
+  scene.view = view;
+  scene.unit = unit;
+  scene.high = high > 0.0 ? high : 1.0;
+  scene.reference = pictured.size() - 1;
+  const auto magnitude = [](const post::WallField& w) {
+    std::vector<double> m;
+    m.reserve(w.wss.size());
+    for (const Vec3& t : w.wss) m.push_back(t.norm());
+    return m;
+  };
+  for (size_t k = 0; k < pictured.size(); ++k) {
+    scene.walls.push_back(viewed_wall(pictured[k]->name, walls[k].mesh, magnitude(walls[k])));
+    for (const post::Ring& ring : pictured[k]->rings) {
+      std::vector<Vec3> line;
+      for (const post::RingSample& sample : ring.samples) line.push_back(sample.point);
+      if (ring.closed && !line.empty()) line.push_back(line.front());
+      scene.walls.back().rings.push_back(line);
+    }
+  }
+  std::vector<double> spread;  // |differences| of every compared wall, for the colour range
+  for (size_t k = 0; k + 1 < pictured.size(); ++k) {
+    scene.walls[k].difference = difference_on(scene.walls.back(), walls[k].mesh, magnitude(walls[k]));
+    for (double d : scene.walls[k].difference) spread.push_back(std::abs(d));
+  }
+  if (!spread.empty()) {
+    const size_t at = static_cast<size_t>(0.95 * static_cast<double>(spread.size() - 1));
+    std::nth_element(spread.begin(), spread.begin() + static_cast<long>(at), spread.end());
+    scene.difference_range = spread[at];
+  }
+  if (!(scene.difference_range > 0.0)) scene.difference_range = 0.25 * scene.high;
+  for (const post::PointSpec& p : config.points) scene.points.emplace_back(p.name, p.point);
+  const std::string block = view3d_html(scene, *scripts);
+  const std::string about = fmt::format(
+      "Every wall in 3D, coloured by |WSS| on one scale (0 to the reference's 99th percentile, {:.3g} Pa), the rings "
+      "as black lines and the points as magenta dots: drag to turn, scroll to zoom, right-drag to pan; the views turn "
+      "together. The toggle shows each compared mesh's |WSS| minus the reference's, on the reference's wall (colours "
+      "from -{:.3g} to +{:.3g} Pa, the 95th percentile of the differences). Walls over {} triangles are made coarser "
+      "for display only. Open report.html?view3d to see the views alone. This view adds {:.1f} MB to report.html "
+      "(three.js {:.1f} MB of it).",
+      scene.high, scene.difference_range, scene.difference_range, kViewTriangles, block.size() / 1e6,
+      (scripts->three.size() + scripts->controls.size()) / 1e6);
+  doc.markdown += "In report.html: an interactive 3D view of every wall. " + about + "\n\n";
+  doc.html += "<p>" + xml_escape(about) + "</p>\n" + block;
 }
 
 }  // namespace
@@ -597,6 +658,8 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
                fmt::format("WSS magnitude on the {} mesh (colours 0 to the reference's 99th percentile, {:.3g} Pa)",
                            pictured[k]->name, o.high));
   }
+
+  view_section(doc, config, pictured, walls, high, broadside, unit, reporter);
 
   doc.heading("Timings");
   std::vector<std::vector<std::string>> timing;

@@ -1178,6 +1178,12 @@ TEST(Cli, DemoWritesItsOutputs) {
     EXPECT_LE(j["surface_meshes"][kind]["hausdorff_relative"].get<double>(), 0.02 + 1e-9) << kind;
     EXPECT_TRUE(std::filesystem::exists(tmp.path(std::string("demo/surface_") + kind + ".vtp"))) << kind;
   }
+  // The study's report, opened in headless Chromium with the network off (issue 53): its 3D view drew
+  // the four compared walls and the reference in the scales' colours, without a script error.
+  const std::string report = tmp.path("demo/study/report.html");
+  ASSERT_TRUE(std::filesystem::exists(report));
+  EXPECT_NE(read_text(report).find("<section id=\"view3d\">"), std::string::npos);
+  test::expect_views_drawn(report, 5);
 }
 
 struct VesselInfo {

@@ -119,3 +119,38 @@ def test_help_shows_the_options():
     text = vm.remesh.__doc__
     for option in ("kind", "target_triangles", "uniform", "anisotropic"):
         assert option in text
+
+
+def test_study_from_a_dict_reads_its_ranking(tmp_path, monkeypatch):
+    """vesselmesh.study (issue 53): a tiny study given as a dict (a uniform and a curvature mesh of the
+    Y bifurcation, one reference level) runs like `vesselmesh study` and returns what study.json holds."""
+    data = os.path.join(os.path.dirname(__file__), "..", "..", "data")
+    case = tmp_path / "flow.toml"
+    case.write_text(
+        'mesh = "replaced.msh"\nlength_unit = "mm"\n[fluid]\ndensity = 1060.0\nviscosity = 0.0035\n'
+        "[time]\nsteady = true\n"
+        '[[boundary]]\ntag = "inlet"\ntype = "velocity"\nflow = 2.0\n'
+        '[[boundary]]\ntag = "outlet_1"\ntype = "traction"\n'
+        '[[boundary]]\ntag = "outlet_2"\ntype = "traction"\n'
+        '[[boundary]]\ntag = "wall"\ntype = "wall"\n')
+    monkeypatch.chdir(tmp_path)
+    result = vm.study(
+        {"surface": os.path.abspath(os.path.join(data, "y_bifurcation.stl")), "case": "flow.toml",
+         "triangles": 2000, "meshes": ["uniform", "curvature"],
+         "reference": {"kind": "uniform", "levels": 1, "factor": 1.5}, "volume": {"layers": 2},
+         "ring": [{"name": "parent", "point": [0, 0, -10], "normal": [0, 0, 1]}],
+         "point": [{"name": "A", "point": [0, 3, 0]}]},
+        str(tmp_path / "out"))
+    assert [m["name"] for m in result["meshes"]] == ["uniform", "curvature", "level_1"]
+    assert result["reference"] == "level_1"
+    rankings = result["summary"]["rankings"]
+    assert {q["quantity"] for q in rankings} >= {"ring parent: minimum", "point A"}
+    for q in rankings:
+        assert sorted(o["mesh"] for o in q["order"]) == ["curvature", "uniform"]
+        assert [o["place"] for o in q["order"]] == [1, 2]
+    assert json.loads((tmp_path / "out" / "study.json").read_text()) == result
+    assert "vesselmesh.study() as a dict" in (tmp_path / "out" / "study_input.toml").read_text()
+    assert (tmp_path / "out" / "report.html").exists()
+    with pytest.raises(ValueError, match="triangles"):
+        vm.study({"surface": "nowhere.stl", "case": "flow.toml", "triangles": -3}, str(tmp_path / "never"))
+    assert not (tmp_path / "never").exists()
