@@ -7,7 +7,7 @@
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
-#include <vtkQuadricDecimation.h>
+#include <vtkDecimatePro.h>
 
 #include <algorithm>
 
@@ -33,10 +33,11 @@ TriMesh decimated(const TriMesh& surface, int max_triangles) {
   double keep = 0.97 * max_triangles / static_cast<double>(surface.num_triangles());
   TriMesh result;
   for (int attempt = 0; attempt < 4; ++attempt) {
-    vtkNew<vtkQuadricDecimation> filter;
+    vtkNew<vtkDecimatePro> filter;  // (VTK's quadric decimation took 13 s on a 131k-triangle pipe, this 0.6)
     filter->SetInputData(input);
     filter->SetTargetReduction(std::clamp(1.0 - keep, 0.0, 0.999));
-    filter->VolumePreservationOn();  // (the filter weighs the open ends' rims to keep them)
+    filter->SetPreserveTopology(attempt < 3);  // the last attempt may split the mesh to reach the count
+    filter->BoundaryVertexDeletionOff();  // the open ends' rims stay as they are
     filter->Update();
     vtkPolyData* out = filter->GetOutput();
     result = TriMesh{};
