@@ -357,7 +357,7 @@ PYBIND11_MODULE(vesselmesh, m) {
                              py::arg("mean_quality") = r.stats.mean_quality, py::arg("hausdorff") = r.stats.hausdorff,
                              py::arg("hausdorff_relative") = r.stats.hausdorff_relative,
                              py::arg("hausdorff_facets") = r.stats.hausdorff_facets,
-                             py::arg("count_note") = r.count_note);
+                             py::arg("count_note") = r.count_note, py::arg("least_count") = r.least_count);
         return py::make_tuple(points_array(r.mesh.points), index_array(r.mesh.triangles), stats);
       },
       py::arg("points"), py::arg("triangles"), py::arg("kind") = "curvature", py::arg("target_triangles") = 8000.0,
@@ -365,7 +365,8 @@ PYBIND11_MODULE(vesselmesh, m) {
       "(uniform, distance, curvature, anisotropic), as `vesselmesh remesh --size KIND --target-triangles N`; returns "
       "(points, triangles, stats): stats' hausdorff is the distance to the smooth surface the input's triangles "
       "stand for, hausdorff_facets to the triangles; count_note says why the count stays more than 3 % off the "
-      "target (empty when within).");
+      "target (empty when within), least_count the least count the distance bound allows this kind where it holds "
+      "the count over the target (0: not measured).");
   m.def(
       "extend",
       [](const Points& points, const Indices& triangles, double length) {

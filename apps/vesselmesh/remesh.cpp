@@ -257,6 +257,7 @@ Command add_remesh_command(CLI::App& parent) {
               if (target > 0.0) {
                 json["target_triangles"] = std::lround(target);
                 json["count_note"] = result.count_note.empty() ? Json(nullptr) : Json(result.count_note);
+                json["least_count"] = result.least_count > 0 ? Json(result.least_count) : Json(nullptr);
               }
               json["engine"] = o->engine;
               json["distance_to"] = gmsh || options.reconstruction == remesh::Reconstruction::facets ? "input triangles"

@@ -17,6 +17,30 @@
 namespace vesselmesh::cli {
 namespace {
 
+// --refine x,y,z:x,y,z:RADIUS:SIZE, or OptionError quoting it.
+volume::RefineRegion parse_region(const std::string& text) {
+  const std::vector<std::string> parts = split(text, ':');
+  const auto fail = [&] {
+    return OptionError(fmt::format("--refine '{}': give x,y,z:x,y,z:RADIUS:SIZE (two points, a radius and a size "
+                                   "> 0, in the mesh's unit)",
+                                   text));
+  };
+  if (parts.size() != 4) throw fail();
+  volume::RefineRegion r;
+  r.from = parse_point(parts[0], "--refine");
+  r.to = parse_point(parts[1], "--refine");
+  try {
+    size_t used_radius = 0, used_size = 0;
+    r.radius = std::stod(parts[2], &used_radius);
+    r.size = std::stod(parts[3], &used_size);
+    if (used_radius != parts[2].size() || used_size != parts[3].size()) throw fail();
+  } catch (const std::exception&) {
+    throw fail();
+  }
+  if (!(r.radius > 0.0 && r.size > 0.0 && std::isfinite(r.radius) && std::isfinite(r.size))) throw fail();
+  return r;
+}
+
 Json quality_json(const volume::VolumeQuality& q) {
   Json tags = Json::object();
   for (const auto& [name, count] : q.triangles_per_tag) tags[name] = count;
@@ -86,6 +110,7 @@ Command add_volume_command(CLI::App& parent) {
     SurfaceInput surface;
     std::string output, algorithm = "delaunay", end_names;
     std::vector<std::string> ends;
+    std::vector<std::string> refine;
     volume::VolumeOptions volume;
     int target_points = 0;
     CommonOptions common;
@@ -150,6 +175,10 @@ Command add_volume_command(CLI::App& parent) {
   app->add_option("--end", o->ends,
                   "NAME:x,y,z names the end whose centre is nearest the point (repeat it for every end; instead of "
                   "--inlet and --end-names, and the same whatever order the ends come in)");
+  app->add_option("--refine", o->refine,
+                  "x,y,z:x,y,z:RADIUS:SIZE — the interior no coarser than SIZE within RADIUS of the segment between "
+                  "the two points (mesh units), graded outward by --interior-gradation: where the flow, not the wall, "
+                  "asks for a finer mesh (a jet and its shear layer). Repeat it for several regions");
   app->add_option("--threads", o->volume.threads, "Threads for HXT (0: all)")->check(CLI::NonNegativeNumber);
   add_common_options(*app, o->common);
   return {app, [o] {
@@ -157,6 +186,7 @@ Command add_volume_command(CLI::App& parent) {
             volume::VolumeOptions options = o->volume;
             options.algorithm = volume::parse_fill_algorithm(o->algorithm);
             if (!o->end_names.empty()) options.end_names = split(o->end_names, ',');
+            for (const std::string& text : o->refine) options.interior.regions.push_back(parse_region(text));
             for (const std::string& text : o->ends) {
               auto [name, point] = parse_named_point(text, "--end");
               options.end_at.push_back({name, point});
@@ -211,6 +241,7 @@ Command add_volume_command(CLI::App& parent) {
               json["interior_size"] = {{"factor", r.interior_factor},
                                        {"gradation", options.interior.gradation},
                                        {"core_fraction", options.interior.core_fraction},
+                                       {"refine", o->refine},
                                        {"at_wall_mm", {{"min", round_to(r.interior_size_min, 5)},
                                                        {"median", round_to(r.interior_size_median, 5)},
                                                        {"max", round_to(r.interior_size_max, 5)}}}};

@@ -996,11 +996,14 @@ void NavierStokes::Impl::solve_system(StepReport& report, const std::string& whe
     stats = direct ? solver->solve_assembled_direct(rhs, x) : solver->solve_assembled(rhs, x);
     stats.iterations += iterative;
   };
-  // An answer whose true residual missed (unstable ILU factors of the velocity block): again with
-  // SOR sweeps there, as the iterations after it (LinearSolver::sweep_velocity_blocks).
-  if (stats.true_residual_missed && solver->sweep_velocity_blocks())
-    again("missed the answer", "the velocity block's ILU factors are unstable here; solved again with SOR sweeps "
-          "instead of them, and so the steady iterations after it", false);
+  // An answer whose true residual missed, or a steady solve that failed (unstable ILU factors of the
+  // velocity block: on the FDA nozzle's 1.0M-unknown mesh GMRES broke down after 200 iterations at
+  // half the inflow): again with SOR sweeps there, as the iterations after it
+  // (LinearSolver::sweep_velocity_blocks).
+  if ((stats.true_residual_missed || (!stats.converged && direct_fallback)) && solver->sweep_velocity_blocks())
+    again(stats.true_residual_missed ? "missed the answer" : "did not converge",
+          "the velocity block's ILU factors may be unstable here; solved again with SOR sweeps instead of them, and "
+          "so the steady iterations after it", false);
   if (!stats.converged && direct_fallback && !direct_now &&
       kBlock * total_points <= NavierStokes::kDirectFallbackUnknowns) {
     direct_now = true;

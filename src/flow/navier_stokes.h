@@ -143,8 +143,8 @@ class NavierStokes {
   static constexpr std::array<double, 3> kInflowStages = {0.25, 0.5, 1.0};
   static constexpr double kStageTolerance = 1e-2;
   // A steady iteration's linear system the iterative solver does not converge on (its true
-  // residual checked: an answer whose true residual missed is solved again with SOR sweeps on the
-  // velocity blocks first, LinearSolver::sweep_velocity_blocks) is solved directly (MUMPS) up to
+  // residual checked: an answer whose true residual missed, or a failed solve, is solved again with
+  // SOR sweeps on the velocity blocks first, LinearSolver::sweep_velocity_blocks) is solved directly (MUMPS) up to
   // this many unknowns (its memory grows faster than they do), said in a warning; larger ones are a
   // ComputationError as before.
   static constexpr int kDirectFallbackUnknowns = 300000;

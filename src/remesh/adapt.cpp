@@ -755,23 +755,33 @@ std::pair<const Run*, const Run*> bracket(const std::vector<Run>& runs, double t
   return {below, above};
 }
 
-// Why a count stays more than 3 % (the sizing issue's tolerance) off its target, or nothing.
-std::string count_note(const RemeshStats& s, double target, bool held, const std::vector<Run>& runs) {
+// Above the target by more than 3 % (the sizing issue's tolerance), where the distance bound refined
+// anything: it holds the count (its chord bound and tightening do not scale with the field).
+bool bound_holds(const RemeshStats& s, double target) {
+  return s.triangles > 1.03 * target && (s.bound_peak.factor > 1.01 || s.refinements > 0 || s.tightened > 0);
+}
+
+// Why a count stays more than 3 % off its target, or nothing; `least`: the least count the bound
+// allows (0: not known).
+std::string count_note(const RemeshStats& s, double target, bool held, const std::vector<Run>& runs, int least) {
   const double off = s.triangles / target - 1.0;
   if (std::abs(off) <= 0.03) return {};
   const std::string head = fmt::format("{} triangles for a target of {:.0f} ({:+.1f} %)", s.triangles, target, 100.0 * off);
-  // Above the target, where the distance bound refined anything: it holds the count (its chord
-  // bound and tightening do not scale with the field).
-  if (off > 0.0 && (s.bound_peak.factor > 1.01 || s.refinements > 0 || s.tightened > 0)) {
+  if (bound_holds(s, target)) {
     std::string where;
     if (s.bound_peak.point >= 0)
       where = fmt::format(", most ({:.3g} times the field's triangle density) near input point {} ({:.5g}, {:.5g}, {:.5g})",
                           s.bound_peak.factor, s.bound_peak.point, s.bound_location.x(), s.bound_location.y(),
                           s.bound_location.z());
     return fmt::format("{}: the distance bound holds it (--hausdorff-relative, --hausdorff): the vessel's curvature "
-                       "there needs more triangles than the field gives{}; a larger bound lets the count fall to the "
+                       "there needs more triangles than the field gives{}; {}a larger bound lets the count fall to the "
                        "target (0: no bound)",
-                       head, where);
+                       head, where,
+                       least > 0 ? fmt::format("the least count this kind has within the bound is about {} (where the "
+                                               "count stopped falling as the field coarsened): ask at least that many, "
+                                               "or ",
+                                               least)
+                                 : std::string());
   }
   if (held)
     return fmt::format("{}: no bound acted, the edges are within the unit band of the field already (the remesher "
@@ -858,7 +868,9 @@ RemeshResult fit_count(const Engine& engine, const std::vector<Sym3>& metrics, d
     }
   }
   result.stats.seconds = seconds;
-  result.count_note = count_note(result.stats, target_triangles, held, runs);
+  // Where the bound held the count and the field's steps stopped moving it: the least count it allows.
+  if (held && bound_holds(result.stats, target_triangles)) result.least_count = result.stats.triangles;
+  result.count_note = count_note(result.stats, target_triangles, held, runs, result.least_count);
   if (!result.count_note.empty()) reporter.warning(result.count_note);
   return result;
 }

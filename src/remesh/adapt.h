@@ -97,6 +97,10 @@ struct RemeshResult {
   // fit_count: why the count stays more than 3 % off the target (which bound, where, what
   // relaxes it; or the count's scatter), also warned; empty when it is within.
   std::string count_note;
+  // fit_count, where the distance bound held the count over its target and coarsening the field
+  // stopped moving it (two steps that moved it by under a quarter of what they asked): that count,
+  // about the least this kind has within the bound; 0 where not so.
+  int least_count = 0;
 };
 
 RemeshResult adapt(const TriMesh& input, const std::vector<Sym3>& metrics, const RemeshOptions& options = {},
@@ -109,7 +113,8 @@ RemeshResult adapt(const TriMesh& input, const std::vector<Sym3>& metrics, const
 // most; the closest run is returned. The sizing issue's target count (3 %; the 2 % default leaves
 // a margin). The distance bound's refinement does not scale, so a count it dominates may stay
 // above target: two unbracketed steps in a row that each move the count by less than a quarter of
-// what they asked (in log) end the loop. A count left more than 3 % off: RemeshResult::count_note.
+// what they asked (in log) end the loop (RemeshResult::least_count). A count left more than 3 % off:
+// RemeshResult::count_note.
 RemeshResult adapt_to_count(const TriMesh& input, const std::vector<Sym3>& metrics, double target_triangles,
                             const RemeshOptions& options = {}, const Reporter& reporter = silent_reporter(),
                             double tolerance = 0.02, int max_corrections = 6);

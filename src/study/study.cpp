@@ -548,6 +548,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
     if (stamp && fs::exists(volume_file) && fs::exists(flow_dir + "/wall.pvd")) {
       const Json& j = *stamp;
       run.surface_triangles = j["surface_triangles"];
+      run.least_count = j.value("least_count", 0);
       run.surface_points = j["surface_points"];
       run.volume_points = j["volume_points"];
       run.tetrahedra = j["tetrahedra"];
@@ -631,6 +632,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
                            s.signal);
       run.seconds["flow"] = since(step);
       run.surface_triangles = remeshed.stats.triangles;
+      run.least_count = remeshed.least_count;
       run.surface_points = remeshed.stats.points;
       run.volume_points = quality.points;
       run.tetrahedra = quality.tets + 3 * quality.prisms;
@@ -644,6 +646,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       Json j = {{"key", flow_key},
                 {"mesh", name},
                 {"surface_triangles", run.surface_triangles},
+                {"least_count", run.least_count},
                 {"surface_points", run.surface_points},
                 {"volume_points", run.volume_points},
                 {"tetrahedra", run.tetrahedra},
@@ -661,9 +664,11 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
     if (!run.series && std::abs(run.surface_triangles - run.target_triangles) > 0.03 * run.target_triangles) {
       const std::string warning = fmt::format(
           "the {} mesh has {} triangles, {:+.1f} % from the {:.0f} asked: the meshes are not of equal size (the "
-          "distance bound of the remesher keeps a coarse mesh from the surface's curves; raise `triangles`)",
+          "distance bound of the remesher keeps a coarse mesh from the surface's curves; raise `triangles`{})",
           name, run.surface_triangles, 100.0 * (run.surface_triangles / run.target_triangles - 1.0),
-          run.target_triangles);
+          run.target_triangles,
+          run.least_count > 0 ? fmt::format(" to at least {}, the least count the bound allows this kind", run.least_count)
+                              : std::string());
       reporter.warning(warning);
       result.warnings.push_back(warning);
     }

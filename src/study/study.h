@@ -118,6 +118,9 @@ struct MeshRun {
   bool series = false;    // a level of the refinement series
   double target_triangles = 0.0;
   int surface_triangles = 0, surface_points = 0;
+  // Where the remesher's distance bound held the count over its target: the least count it allows
+  // this kind (remesh::RemeshResult::least_count); 0 where not measured.
+  int least_count = 0;
   int volume_points = 0, tetrahedra = 0, dofs = 0;
   double min_dihedral = 0.0;  // degrees, over all cells
   // Degrees: the boundary layer's cells' and the interior's apart (-1: none, or a stamp from before

@@ -704,7 +704,9 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
       rings.push_back({{"name", r.name}, {"length", r.length}, {"minimum_wss_Pa", r.samples[r.minimum].magnitude},
                        {"minimum_angle_deg", r.samples[r.minimum].angle}});
     list.push_back({{"name", m.name}, {"series", m.series}, {"target_triangles", m.target_triangles},
-                    {"surface_triangles", m.surface_triangles}, {"surface_points", m.surface_points},
+                    {"surface_triangles", m.surface_triangles},
+                    {"least_count", m.least_count > 0 ? Json(m.least_count) : Json(nullptr)},
+                    {"surface_points", m.surface_points},
                     {"volume_points", m.volume_points}, {"tetrahedra", m.tetrahedra}, {"dofs", m.dofs},
                     {"min_dihedral_deg", m.min_dihedral},
                     {"min_dihedral_layer_deg", m.min_dihedral_layer >= 0.0 ? Json(m.min_dihedral_layer) : Json()},

@@ -30,6 +30,11 @@ void check_interior_size_options(const InteriorSizeOptions& o) {
     throw OptionError(fmt::format("--interior-gradation {}: give a growth >= 1 (1: no growth inward)", o.gradation));
   if (!(o.core_fraction > 0.0 && std::isfinite(o.core_fraction)))
     throw OptionError(fmt::format("the interior's core fraction {} must be > 0", o.core_fraction));
+  for (const RefineRegion& r : o.regions)
+    if (!(r.radius > 0.0 && std::isfinite(r.radius) && r.size > 0.0 && std::isfinite(r.size) &&
+          r.from.allFinite() && r.to.allFinite()))
+      throw OptionError(fmt::format("--refine: a region needs a radius > 0 and a size > 0 (given radius {}, size {})",
+                                    r.radius, r.size));
 }
 
 std::vector<double> area_equivalent_sizes(const TriMesh& mesh) {
@@ -81,6 +86,13 @@ double InteriorSize::at(const Vec3& x) const {
   t /= sum;
   double size = h + slope_ * std::max(0.0, hit.distance - t);
   if (!radius_.empty()) size = std::min(size, std::max(h, options_.core_fraction * r));
+  for (const RefineRegion& region : options_.regions) {
+    const Vec3 axis = region.to - region.from;
+    const double length2 = axis.squaredNorm();
+    const double t = length2 > 0.0 ? std::clamp((x - region.from).dot(axis) / length2, 0.0, 1.0) : 0.0;
+    const double outside = std::max(0.0, (x - (region.from + t * axis)).norm() - region.radius);
+    size = std::min(size, region.size + slope_ * outside);
+  }
   return options_.factor * size;
 }
 

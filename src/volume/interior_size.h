@@ -13,7 +13,8 @@
 //   size(x) = factor * min(h(c) + d ln g, max(h(c), core_fraction * R(c))),
 // the growth per unit length of the surface's gradation (sizing/gradation.h: h_j <= h_i + |e| ln g),
 // and the core of a vessel coarsening to at most core_fraction of the local radius (never finer
-// than the wall's own size). Without radii (none given) the core bound is left out.
+// than the wall's own size). Without radii (none given) the core bound is left out. Finer regions
+// (RefineRegion) bound it further, graded outward from each.
 // Every fill engine is given this field (volume/fill.h), so the engine changes the tetrahedra's
 // shape, not their number. Queries are const and thread-safe once built.
 #pragma once
@@ -25,6 +26,15 @@
 
 namespace vesselmesh::volume {
 
+// A region of the lumen that the flow, not the wall, asks to be finer (a jet and its shear layer, an
+// aneurysm's inflow): the capsule of points within `radius` of the segment from `from` to `to`
+// (mesh units), whose interior size is at most `size` there, growing outside it by the gradation
+// (`volume --refine`).
+struct RefineRegion {
+  Vec3 from = Vec3::Zero(), to = Vec3::Zero();
+  double radius = 0.0, size = 0.0;
+};
+
 struct InteriorSizeOptions {
   double factor = 1.0;          // scales the whole field (`--interior-size`)
   double gradation = 1.3;       // growth from the wall inward (`--interior-gradation`; 1: none)
@@ -35,9 +45,12 @@ struct InteriorSizeOptions {
   // (anisotropic, Gmsh's Delaunay); 0.2 let a 0.18 mm wall's core grow to 0.4 mm, and the velocity
   // error rose from under 1 % of the peak to 1.27 %.
   double core_fraction = 0.1;
+  // Finer regions: the size at x at most region.size + ln(g) * (its distance outside the region).
+  std::vector<RefineRegion> regions = {};
 };
 
-// OptionError for a factor <= 0, a gradation < 1 or a core fraction <= 0 (naming the option).
+// OptionError for a factor <= 0, a gradation < 1, a core fraction <= 0, or a region of radius or size
+// <= 0 (naming the option).
 void check_interior_size_options(const InteriorSizeOptions& options);
 
 // Per point of `mesh`: the area-equivalent size of the triangles around it (0 for a point no

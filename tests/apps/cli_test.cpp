@@ -530,6 +530,20 @@ TEST(Cli, VolumeWritesTaggedMeshesThatQualityReadsBack) {
   EXPECT_NEAR(sized.json()["points"].get<int>(), target, 0.02 * target);
   EXPECT_LT(sized.json()["interior_size"]["factor"].get<double>(), 1.0);
   EXPECT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.msh"), "--target-points", "0"}).code, 2);
+  // --refine: a finer core along the axis (0.15 mm within 0.6 mm of it, the wall's 0.4 mm elsewhere) has
+  // more points, the region in the JSON; a malformed region is exit 2 with one line saying the form.
+  const RunResult jet = run({"volume", tmp.path("p.stl"), "-o", tmp.path("j.msh"), "--layers", "3", "--refine",
+                             "0,0,2:0,0,8:0.6:0.15", "--json"});
+  ASSERT_EQ(jet.code, 0) << jet.err;
+  EXPECT_GT(jet.json()["points"].get<int>(), points + 500);
+  EXPECT_EQ(jet.json()["interior_size"]["refine"][0], "0,0,2:0,0,8:0.6:0.15");
+  EXPECT_EQ(jet.json()["inverted"].get<int>(), 0);
+  std::filesystem::remove(tmp.path("j.msh"));
+  for (const char* bad : {"0,0,2:0,0,8:0.6", "0,0,2:0,0,8:0:0.15", "0,0,2:0,0:0.6:0.15", "0,0,2:0,0,8:0.6:x"}) {
+    const RunResult r2 = run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.msh"), "--refine", bad});
+    EXPECT_EQ(r2.code, 2) << bad;
+    EXPECT_NE(last_line(r2.err).find("--refine"), std::string::npos) << r2.err;
+  }
   const RunResult few = run({"volume", tmp.path("p.stl"), "-o", tmp.path("x.msh"), "--target-points", "10"});
   EXPECT_EQ(few.code, 2);
   EXPECT_NE(few.err.find("the boundary layer and the caps alone"), std::string::npos) << few.err;

@@ -16,6 +16,7 @@
 #include "synth/shapes.h"
 #include "test_support.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -265,11 +266,20 @@ TEST(FitCount, EndsWhenABoundHoldsTheCount) {
   const RemeshResult b = fit_count(std::cref(bounded), identity, 8000.0, bounded_log);
   EXPECT_NE(b.count_note.find("the distance bound holds it (--hausdorff-relative"), std::string::npos) << b.count_note;
   EXPECT_NE(bounded_log.warnings.find("the distance bound holds it"), std::string::npos);
+  // The count where the steps stopped moving it is the least this kind has within the bound (issue
+  // 51): given, and said; not where no bound acted, nor where the loop reached its target.
+  EXPECT_EQ(b.least_count, b.stats.triangles);
+  EXPECT_NE(b.count_note.find(fmt::format("the least count this kind has within the bound is about {} ",
+                                          b.stats.triangles)),
+            std::string::npos)
+      << b.count_note;
+  EXPECT_EQ(r.least_count, 0);
   // Weak once (scatter), then proportional again: the target is reached.
   CountingEngine scattered{[](double s) { return s > 0.8 ? 11526 : static_cast<int>(11526.0 * s / 0.8); }};
   const RemeshResult t = fit_count(std::cref(scattered), identity, 10000.0);
   EXPECT_NEAR(t.stats.triangles, 10000, 200);
   EXPECT_TRUE(t.count_note.empty()) << t.count_note;
+  EXPECT_EQ(t.least_count, 0);
 }
 
 // A scattered count that leaves the bracket as it was would repeat a scale: the loop ends instead.

@@ -56,6 +56,33 @@ TEST(InteriorSize, CarriedInwardGradedAndBoundedByTheRadius) {
   EXPECT_NEAR(small_core.at(mid), h, 0.05 * h);
 }
 
+// A finer region (volume --refine): inside the capsule its size, outside it growing by ln(g) a unit
+// of distance from the capsule, nowhere coarser than without it; the factor scales it too.
+TEST(InteriorSize, RegionsMakeTheInteriorFinerGradedOutward) {
+  const double R = 2.0;
+  const TriMesh pipe = synth::cylinder({.radius = R, .length = 10.0, .resolution = 0.2});
+  const std::vector<double> radius(pipe.points.size(), R);
+  const InteriorSizeOptions plain{.factor = 1.0, .gradation = 1.3, .core_fraction = 0.25};
+  InteriorSizeOptions refined = plain;
+  refined.regions = {{.from = Vec3(0, 0, 4), .to = Vec3(0, 0, 8), .radius = 0.5, .size = 0.05}};
+  const InteriorSize base(pipe, radius, plain), field(pipe, radius, refined);
+  EXPECT_NEAR(field.at(Vec3(0, 0, 5)), 0.05, 1e-12);       // on the axis, inside
+  EXPECT_NEAR(field.at(Vec3(0.4, 0, 8)), 0.05, 1e-12);     // inside, at the end
+  EXPECT_NEAR(field.at(Vec3(0.9, 0, 6)), 0.05 + std::log(1.3) * 0.4, 1e-12);  // 0.4 outside
+  EXPECT_NEAR(field.at(Vec3(0, 0, 8.8)), 0.05 + std::log(1.3) * 0.3, 1e-12);  // beyond the end (a round cap)
+  EXPECT_DOUBLE_EQ(field.at(Vec3(0, 0, 1)), base.at(Vec3(0, 0, 1)));           // far away: as before
+  for (double z = 0.5; z < 10.0; z += 0.5)
+    for (double x = 0.0; x < R; x += 0.25) EXPECT_LE(field.at(Vec3(x, 0, z)), base.at(Vec3(x, 0, z)) + 1e-12);
+  refined.factor = 2.0;
+  EXPECT_NEAR(InteriorSize(pipe, radius, refined).at(Vec3(0, 0, 5)), 0.1, 1e-12);
+  InteriorSizeOptions bad = plain;
+  bad.regions = {{.from = Vec3::Zero(), .to = Vec3::UnitZ(), .radius = 0.0, .size = 0.1}};
+  EXPECT_THROW(check_interior_size_options(bad), OptionError);
+  bad.regions[0].radius = 1.0;
+  bad.regions[0].size = -1.0;
+  EXPECT_THROW(check_interior_size_options(bad), OptionError);
+}
+
 TEST(InteriorSize, BadOptionsAreOptionErrors) {
   EXPECT_THROW(check_interior_size_options({.factor = 0.0}), OptionError);
   EXPECT_THROW(check_interior_size_options({.factor = -1.0}), OptionError);
