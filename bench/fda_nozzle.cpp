@@ -2,19 +2,26 @@
 // `vesselmesh synth nozzle` against the FDA's measurements (conformance files of the five
 // laboratories, Re_throat = 500): the centerline axial velocity and the wall pressure along z.
 //   bench_fda_nozzle RESULT_DIR EXPERIMENT_DIR OUT_DIR
+//   bench_fda_nozzle --series FINE_OUT MEDIUM_OUT COARSE_OUT SERIES_OUT
 // RESULT_DIR: simulate's output folder (the last frame of fluid.pvd is compared; the one before,
 // when there is one, says how steady it was). EXPERIMENT_DIR: the unzipped `experiment/` folder
 // (PIV_*_500_<lab>.txt; z in m, flow along +z). Prints the tables and the summary; writes
 // OUT_DIR/centerline_velocity.csv, wall_pressure.csv and their charts (SVG and PNG). The mesh is in mm
 // (as synth writes it). Pressures are compared as differences from the most downstream tap every
 // laboratory has (the measurements are gauge pressures with each laboratory's own zero).
+// --series: three levels' OUT_DIRs (their CSVs, and RESULT_DIR = OUT_DIR/flow for the point counts),
+// finest first: per station the three values, the observed order, the extrapolated value and the
+// finest level's GCI (study/gci.h, Celik et al. 2008), whether each level lies within the
+// laboratories' range, and each level's RMS difference; SERIES_OUT/series_velocity.csv and .svg/.png.
 #include "io/atomic_file.h"
 #include "mesh/error.h"
 #include "post/fluid_sample.h"
 #include "study/chart.h"
+#include "study/gci.h"
 #include "study/raster.h"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <array>
@@ -234,10 +241,92 @@ int run(int argc, char** argv) {
   return 0;
 }
 
+// The rows of a CSV this program wrote (a header line, then numbers).
+std::vector<std::vector<double>> read_csv(const std::string& path) {
+  std::istringstream in(io::read_file(path));
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+int series(int argc, char** argv) {
+  if (argc != 6) {
+    std::cerr << "usage: bench_fda_nozzle --series FINE_OUT MEDIUM_OUT COARSE_OUT SERIES_OUT\n";
+    return 2;
+  }
+  const std::array<std::string, 3> level = {argv[2], argv[3], argv[4]};
+  const std::string out = argv[5];
+  std::array<double, 3> points{};
+  std::array<std::vector<std::vector<double>>, 3> velocity;
+  for (int k = 0; k < 3; ++k) {
+    points[k] = nlohmann::json::parse(io::read_file(level[k] + "/flow/summary.json"))["points"].get<double>();
+    velocity[k] = read_csv(level[k] + "/centerline_velocity.csv");  // z, mean, min, max, labs, ours
+    if (velocity[k].size() != velocity[0].size()) throw InputError(level[k] + ": other stations than the finest's");
+  }
+  const double throat_mean = 5.20624e-6 / (M_PI * 4e-6);
+  fmt::print("levels (finest first): {:.0f}, {:.0f}, {:.0f} points; r21 = {:.3f}, r32 = {:.3f} (in h = N^-1/3)\n",
+             points[0], points[1], points[2], std::cbrt(points[0] / points[1]), std::cbrt(points[1] / points[2]));
+  fmt::print("{:>7} {:>8} {:>17} {:>8} {:>8} {:>8} {:>6} {:>9} {:>8}  {}\n", "z mm", "labs", "range", "fine", "medium",
+             "coarse", "p", "extrap.", "GCI", "status");
+  std::string csv = "z_mm,labs_mean_m_s,labs_min_m_s,labs_max_m_s,fine_m_s,medium_m_s,coarse_m_s,order,extrapolated_m_s,"
+                    "gci_fine_percent\n";
+  std::array<double, 3> sum2{};
+  std::array<int, 3> within{};
+  const size_t n = velocity[0].size();
+  for (size_t i = 0; i < n; ++i) {
+    const std::vector<double>& row = velocity[0][i];
+    const double mean = row[1], low = row[2], high = row[3];
+    std::array<double, 3> v{};
+    for (int k = 0; k < 3; ++k) {
+      v[k] = velocity[k][i][5];
+      sum2[k] += (v[k] - mean) * (v[k] - mean);
+      within[k] += low <= v[k] && v[k] <= high;
+    }
+    const study::GridConvergence g = study::grid_convergence(points[0], points[1], points[2], v[0], v[1], v[2]);
+    fmt::print("{:7.1f} {:8.4f} {:8.4f}..{:<8.4f} {:8.4f} {:8.4f} {:8.4f} {:6.2f} {:9.4f} {:7.2f}%  {}\n", row[0], mean,
+               low, high, v[0], v[1], v[2], g.order, g.extrapolated, 100 * g.gci_fine, g.status);
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", row[0], mean, low, high, v[0], v[1], v[2], g.order,
+                       g.extrapolated, 100 * g.gci_fine);
+  }
+  for (int k = 0; k < 3; ++k)
+    fmt::print("{}: RMS difference from the labs' mean {:.1f} % of the throat's mean velocity, {} of {} stations within "
+               "the labs' range\n",
+               level[k], 100 * std::sqrt(sum2[k] / n) / throat_mean, within[k], n);
+  std::filesystem::create_directories(out);
+  io::write_text(out + "/series_velocity.csv", csv);
+  study::LineChart chart;
+  chart.title = "FDA nozzle, Re_throat = 500: centerline axial velocity on three meshes";
+  chart.x_label = "z (mm), flow along +z";
+  chart.y_label = "velocity (m/s)";
+  study::Series low{.name = "labs' lowest", .x = {}, .y = {}, .dashed = true},
+      high{.name = "labs' highest", .x = {}, .y = {}, .dashed = true};
+  for (const std::vector<double>& row : velocity[0]) {
+    low.x.push_back(row[0]), low.y.push_back(row[2]);
+    high.x.push_back(row[0]), high.y.push_back(row[3]);
+  }
+  chart.series = {low, high};
+  for (int k = 0; k < 3; ++k) {
+    study::Series s{.name = fmt::format("{:.0f} points", points[k]), .x = {}, .y = {}, .dashed = false};
+    for (const std::vector<double>& row : velocity[k]) s.x.push_back(row[0]), s.y.push_back(row[5]);
+    chart.series.push_back(s);
+  }
+  study::write_svg_and_png(out + "/series_velocity", study::svg(chart));
+  fmt::print("wrote {}/series_velocity.csv|svg|png\n", out);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   try {
+    if (argc > 1 && std::string(argv[1]) == "--series") return series(argc, argv);
     return run(argc, argv);
   } catch (const std::exception& e) {
     std::cerr << "bench_fda_nozzle: " << e.what() << "\n";

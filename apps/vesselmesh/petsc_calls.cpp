@@ -2,6 +2,7 @@
 // PETSc's module, opened on first use (see flow/petsc_module.h for why).
 #include "flow/linear_solver.h"
 #include "flow/petsc_module.h"
+#include "parallel/processes.h"
 #include "io/hdf5_file.h"
 #include "modules.h"
 
@@ -24,25 +25,6 @@ struct LinearSolver::Impl {
   LinearSolver* inside = nullptr;
 };
 
-int process_count() { return petsc_calls().process_count(); }
-int process_rank() { return petsc_calls().process_rank(); }
-bool any_process(bool flag) { return petsc_calls().any_process(flag); }
-std::vector<double> gather_all(double value) { return petsc_calls().gather_all(value); }
-std::vector<double> sum_all(std::vector<double> values) { return petsc_calls().sum_all(std::move(values)); }
-std::vector<double> gather_to_first(const std::vector<double>& values) {
-  return petsc_calls().gather_to_first(values);
-}
-std::vector<int> partition_graph(const std::vector<int>& start, const std::vector<int>& neighbours, int parts) {
-  return petsc_calls().partition_graph(start, neighbours, parts);
-}
-std::string scatter_from_first(const std::function<std::string(int rank)>& make) {
-  return petsc_calls().scatter_from_first(make);
-}
-void abort_all(int code) {
-  petsc_calls().abort_all(code);
-  std::abort();  // not reached
-}
-void error_told_together(double seconds) { petsc_calls().error_told_together(seconds); }
 
 LinearSolver::LinearSolver(SparsePattern pattern, int block_size, const std::string& defaults,
                            const std::string& options)
@@ -91,6 +73,32 @@ void LinearSolver::set_low_rank_coefficients(const std::vector<double>& coeffici
 std::string LinearSolver::description() const { return petsc_calls().description(*impl_->inside); }
 
 }  // namespace vesselmesh::flow
+
+namespace vesselmesh::parallel {
+
+using flow::petsc_calls;
+
+int process_count() { return petsc_calls().process_count(); }
+int process_rank() { return petsc_calls().process_rank(); }
+bool any_process(bool flag) { return petsc_calls().any_process(flag); }
+std::vector<double> gather_all(double value) { return petsc_calls().gather_all(value); }
+std::vector<double> sum_all(std::vector<double> values) { return petsc_calls().sum_all(std::move(values)); }
+std::vector<double> gather_to_first(const std::vector<double>& values) {
+  return petsc_calls().gather_to_first(values);
+}
+std::vector<int> partition_graph(const std::vector<int>& start, const std::vector<int>& neighbours, int parts) {
+  return petsc_calls().partition_graph(start, neighbours, parts);
+}
+std::string scatter_from_first(const std::function<std::string(int rank)>& make) {
+  return petsc_calls().scatter_from_first(make);
+}
+void abort_all(int code) {
+  petsc_calls().abort_all(code);
+  std::abort();  // not reached
+}
+void error_told_together(double seconds) { petsc_calls().error_told_together(seconds); }
+
+}  // namespace vesselmesh::parallel
 
 namespace vesselmesh::io {
 

@@ -3,7 +3,7 @@
 #include "commands.h"
 
 #include "flow/case.h"
-#include "flow/linear_solver.h"
+#include "parallel/processes.h"
 #include "flow/simulate.h"
 #include "mesh/error.h"
 
@@ -100,8 +100,8 @@ Command add_simulate_command(CLI::App& parent) {
                "if the run had not stopped");
   add_common_options(*app, o->common);
   return {app, [o] {
-            const bool first = flow::process_rank() == 0;  // under mpirun, the first process speaks
-            if (flow::process_count() == 1) return run(*o, first);
+            const bool first = parallel::process_rank() == 0;  // under mpirun, the first process speaks
+            if (parallel::process_count() == 1) return run(*o, first);
             // Under mpirun an input, option or computation error is raised on every process alike
             // (the mesh's, from the first): the first tells it, then the others end with its code
             // once it says it has (mpirun ends every process once one has ended with an error: the
@@ -111,7 +111,7 @@ Command add_simulate_command(CLI::App& parent) {
             // is told with the process's rank and every process ends at once.
             const auto alike = [&](const std::exception& e, int code) {
               if (first) fmt::print(stderr, "vesselmesh simulate: error: {}\n", e.what());
-              flow::error_told_together(10.0);
+              parallel::error_told_together(10.0);
               return code;
             };
             try {
@@ -123,9 +123,9 @@ Command add_simulate_command(CLI::App& parent) {
             } catch (const ComputationError& e) {
               return alike(e, 1);
             } catch (const std::exception& e) {
-              fmt::print(stderr, "vesselmesh simulate: internal error on process {} of {}: {}\n", flow::process_rank(),
-                         flow::process_count(), e.what());
-              flow::abort_all(1);
+              fmt::print(stderr, "vesselmesh simulate: internal error on process {} of {}: {}\n", parallel::process_rank(),
+                         parallel::process_count(), e.what());
+              parallel::abort_all(1);
             }
           }};
 }

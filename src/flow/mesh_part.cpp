@@ -1,9 +1,10 @@
 #include "flow/mesh_part.h"
 
-#include "flow/linear_solver.h"
 #include "io/bytes.h"
 #include "mesh/error.h"
+#include "mesh/point_graph.h"
 #include "mesh/reorder.h"
+#include "parallel/processes.h"
 
 #include <fmt/format.h>
 
@@ -78,21 +79,9 @@ MeshSplitter::MeshSplitter(const TetMesh& mesh, const std::string& path, int par
     if (whole.empty()) throw InputError(fmt::format("{}: the mesh has no tetrahedra", path));
     check_orientation(mesh, whole, path);
     rcm = mesh::cuthill_mckee_order(mesh);
-    if (parts > 1) {  // the point graph in RCM numbering
-      std::vector<int> position(s.total_points), start{0}, neighbours;
-      for (int k = 0; k < s.total_points; ++k) position[rcm[k]] = k;
-      std::vector<std::vector<int>> rows(s.total_points);
-      for (const Tet& t4 : whole)
-        for (int a : t4)
-          for (int b : t4) rows[position[a]].push_back(position[b]);
-      for (auto& row : rows) {
-        std::sort(row.begin(), row.end());
-        row.erase(std::unique(row.begin(), row.end()), row.end());
-        neighbours.insert(neighbours.end(), row.begin(), row.end());
-        start.push_back(static_cast<int>(neighbours.size()));
-        std::vector<int>().swap(row);
-      }
-      part = partition(start, neighbours, parts);
+    if (parts > 1) {  // the point graph (of the tetrahedra the solver assembles) in RCM numbering
+      const mesh::PointGraph graph = mesh::renumbered(mesh::point_graph(s.total_points, whole), rcm);
+      part = partition(graph.start, graph.next, parts);
       VM_CHECK(static_cast<int>(part.size()) == s.total_points, "the partitioner's answer has a part per point");
     }
   }
@@ -345,14 +334,14 @@ MeshPart unpack(std::string bytes) {
 
 MeshPart distribute_mesh(const TetMesh* mesh, const std::string& path, std::exception_ptr failure,
                          const std::vector<std::string>& wall_names) {
-  const int ranks = process_count(), rank = process_rank();
+  const int ranks = parallel::process_count(), rank = parallel::process_rank();
   std::unique_ptr<MeshSplitter> splitter;
   std::string error;  // the first process's failure as the others receive it
   if (rank == 0) {
     try {
       if (failure) std::rethrow_exception(failure);
       VM_CHECK(mesh != nullptr, "the first process holds the mesh");
-      splitter = std::make_unique<MeshSplitter>(*mesh, path, ranks, partition_graph, wall_names);
+      splitter = std::make_unique<MeshSplitter>(*mesh, path, ranks, parallel::partition_graph, wall_names);
     } catch (const std::exception& e) {
       failure = std::current_exception();
       const char kind = dynamic_cast<const InputError*>(&e)         ? kInput
@@ -368,7 +357,7 @@ MeshPart distribute_mesh(const TetMesh* mesh, const std::string& path, std::exce
   }
   // The others' parts, made and sent one at a time; the first keeps its own as it is.
   std::string mine =
-      scatter_from_first([&](int r) { return splitter ? pack(splitter->part(r)) : error; });
+      parallel::scatter_from_first([&](int r) { return splitter ? pack(splitter->part(r)) : error; });
   if (failure) std::rethrow_exception(failure);
   if (rank == 0) {
     return splitter->part(0);

@@ -3,6 +3,7 @@
 #include "flow/stabilized_cell.h"
 #include "flow/womersley.h"
 #include "mesh/error.h"
+#include "parallel/processes.h"
 
 #include <fmt/format.h>
 #include <tbb/info.h>
@@ -240,7 +241,7 @@ void NavierStokes::Impl::build(MeshPart part) {
   total_points = part.total_points;
   process_begin = std::move(part.process_begin);
   owned = part.owned;
-  node_begin = process_begin[process_rank()];
+  node_begin = process_begin[parallel::process_rank()];
   local_global = std::move(part.local_global);
   mesh_point = std::move(part.mesh_point);
   global_mesh_point = std::move(part.global_mesh_point);
@@ -296,7 +297,7 @@ void NavierStokes::Impl::build(MeshPart part) {
 void NavierStokes::Impl::split_for_threads() {
   // Automatic: the machine's cores on one process; one thread a process under MPI (a process a
   // core is how a cluster job is laid out).
-  threads = fc.threads > 0 ? fc.threads : process_count() > 1 ? 1 : tbb::info::default_concurrency();
+  threads = fc.threads > 0 ? fc.threads : parallel::process_count() > 1 ? 1 : tbb::info::default_concurrency();
   // (More threads than cores: as many ranges, run by the cores; the same result.)
   const int chunks = std::max(1, std::min(threads, owned / 64));
   chunk_begin.assign(1, 0);
@@ -374,7 +375,7 @@ void NavierStokes::Impl::build_boundaries(const MeshPart& part) {
       sum[4 + i] += 0.5 * area2[i];
     }
   }
-  sums = sum_all(std::move(sums));
+  sums = parallel::sum_all(std::move(sums));
   for (size_t k = 0; k < boundaries.size(); ++k) {
     Boundary& b = boundaries[k];
     b.counted = std::move(counted[k]);
@@ -419,7 +420,7 @@ void NavierStokes::Impl::build_boundaries(const MeshPart& part) {
           const Triangle& v = b.faces[f].v;
           flux += b.faces[f].area / 3.0 * (shape[at[v[0]]] + shape[at[v[1]]] + shape[at[v[2]]]);
         }
-      const std::vector<double> total = sum_all({std::real(flux), std::imag(flux)});
+      const std::vector<double> total = parallel::sum_all({std::real(flux), std::imag(flux)});
       if constexpr (std::is_same_v<decltype(flux), double>) flux = total[0];
       else flux = Complex(total[0], total[1]);
       if (!(std::abs(flux) > 0.0))
@@ -501,7 +502,7 @@ std::vector<double> NavierStokes::Impl::fluxes(const std::vector<Vec3>& velocity
         q[k] += face.area / 3.0 * (velocity[face.v[0]] + velocity[face.v[1]] + velocity[face.v[2]]).dot(face.normal);
       }
   }
-  return sum_all(std::move(q));
+  return parallel::sum_all(std::move(q));
 }
 
 // Implicit coupling: the end's pressure P = R Q (resistance) or P = R_p Q + P_c' (rcr) with the
@@ -557,7 +558,7 @@ double NavierStokes::Impl::take_solution(std::vector<Vec3>& velocity, std::vecto
     velocity[a] = v;
     pressure[a] = x[kBlock * a + 3];
   }
-  const std::vector<double> sums = sum_all({change, size});
+  const std::vector<double> sums = parallel::sum_all({change, size});
   return sums[1] > 0.0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
 }
 
@@ -619,17 +620,17 @@ double NavierStokes::Impl::cfl(const std::vector<Vec3>& advect, double dt) const
     for (const Vec3& g : cell_gradients(e, volume)) largest = std::max(largest, g.norm());
     worst = std::max(worst, mean.norm() * dt * largest);
   }
-  const std::vector<double> all = gather_all(worst);
+  const std::vector<double> all = parallel::gather_all(worst);
   return *std::max_element(all.begin(), all.end());
 }
 
 double NavierStokes::Impl::assembled_cfl() const {
-  const std::vector<double> all = gather_all(*std::max_element(chunk_cfl.begin(), chunk_cfl.end()));
+  const std::vector<double> all = parallel::gather_all(*std::max_element(chunk_cfl.begin(), chunk_cfl.end()));
   return *std::max_element(all.begin(), all.end());
 }
 
 std::vector<double> NavierStokes::Impl::gather_points(const std::vector<double>& mine, int width) const {
-  const std::vector<double> all = gather_to_first(mine);
+  const std::vector<double> all = parallel::gather_to_first(mine);
   if (global_mesh_point.empty()) return {};
   std::vector<double> out(all.size());
   for (int g = 0; g < total_points; ++g)
@@ -649,7 +650,7 @@ void NavierStokes::Impl::publish() const {
     for (int i = 0; i < 3; ++i) at[i] = u[a][i];
     at[3] = p[a] * fc.density;
   }
-  all = sum_all(std::move(all));
+  all = parallel::sum_all(std::move(all));
   u_mesh.resize(all.size() / kBlock);
   p_mesh.resize(all.size() / kBlock);
   for (size_t k = 0; k < u_mesh.size(); ++k) {
@@ -1023,7 +1024,7 @@ void NavierStokes::Impl::solve_system(StepReport& report, const std::string& whe
 void NavierStokes::Impl::check_finite(const StepReport& report) const {
   bool finite = true;
   for (const Vec3& v : u) finite = finite && v.allFinite();
-  if (!any_process(!finite)) return;
+  if (!parallel::any_process(!finite)) return;
   throw ComputationError(fmt::format("step {} (t = {:.6g} s) diverged: the velocity is no longer finite; the CFL "
                                      "number was {:.3g} (above ~1 the semi-implicit scheme may blow up: take a "
                                      "smaller dt), or flow entering through a traction boundary (backflow) grew",
@@ -1031,7 +1032,7 @@ void NavierStokes::Impl::check_finite(const StepReport& report) const {
 }
 
 NavierStokes::NavierStokes(const TetMesh& mesh, const FlowCase& flow_case, const Reporter& reporter)
-    : NavierStokes(distribute_mesh(process_rank() == 0 ? &mesh : nullptr, flow_case.mesh), flow_case, reporter) {}
+    : NavierStokes(distribute_mesh(parallel::process_rank() == 0 ? &mesh : nullptr, flow_case.mesh), flow_case, reporter) {}
 
 NavierStokes::NavierStokes(MeshPart part, const FlowCase& flow_case, const Reporter& reporter)
     : impl_(std::make_unique<Impl>()) {
@@ -1437,7 +1438,7 @@ std::vector<BoundaryFlow> NavierStokes::boundary_flows() const {
         weighted[k] += face.area / 3.0 * (s.p[face.v[0]] + s.p[face.v[1]] + s.p[face.v[2]]);
       }
   }
-  weighted = sum_all(std::move(weighted));
+  weighted = parallel::sum_all(std::move(weighted));
   const std::vector<double> q = s.fluxes(s.u);
   std::vector<BoundaryFlow> out;
   for (size_t k = 0; k < s.boundaries.size(); ++k) {
@@ -1455,7 +1456,7 @@ std::vector<BoundaryFlow> NavierStokes::boundary_flows() const {
 
 PartitionReport NavierStokes::partition() const {
   const Impl& s = *impl_;
-  const int ranks = process_count();
+  const int ranks = parallel::process_count();
   std::vector<int> owners;  // the processes owning this process's ghosts
   for (int a = s.owned; a < s.n(); ++a)
     owners.push_back(static_cast<int>(std::upper_bound(s.process_begin.begin(), s.process_begin.end(),
@@ -1464,8 +1465,8 @@ PartitionReport NavierStokes::partition() const {
                      1);
   std::sort(owners.begin(), owners.end());
   owners.erase(std::unique(owners.begin(), owners.end()), owners.end());
-  const std::vector<double> ghosts = gather_all(s.n() - s.owned);
-  const std::vector<double> neighbours = gather_all(static_cast<double>(owners.size()));
+  const std::vector<double> ghosts = parallel::gather_all(s.n() - s.owned);
+  const std::vector<double> neighbours = parallel::gather_all(static_cast<double>(owners.size()));
   PartitionReport out;
   out.threads = s.threads;
   for (int r = 0; r < ranks; ++r) {

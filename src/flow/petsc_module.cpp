@@ -5,16 +5,16 @@ extern "C" __attribute__((visibility("default"))) const vesselmesh::flow::PetscC
   using namespace vesselmesh::flow;
   static const PetscCalls calls{
       kPetscCallsLayout,
-      &process_count,
-      &process_rank,
-      &any_process,
-      &gather_all,
-      &sum_all,
-      &gather_to_first,
-      &partition_graph,
-      &scatter_from_first,
-      &abort_all,
-      &error_told_together,
+      &vesselmesh::parallel::process_count,
+      &vesselmesh::parallel::process_rank,
+      &vesselmesh::parallel::any_process,
+      &vesselmesh::parallel::gather_all,
+      &vesselmesh::parallel::sum_all,
+      &vesselmesh::parallel::gather_to_first,
+      &vesselmesh::parallel::partition_graph,
+      &vesselmesh::parallel::scatter_from_first,
+      &vesselmesh::parallel::abort_all,
+      &vesselmesh::parallel::error_told_together,
       [](SparsePattern pattern, int block_size, const std::string& defaults, const std::string& options) {
         return new LinearSolver(std::move(pattern), block_size, defaults, options);
       },

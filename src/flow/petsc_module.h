@@ -7,6 +7,7 @@
 #pragma once
 
 #include "flow/linear_solver.h"
+#include "parallel/processes.h"
 #include "io/hdf5_file.h"
 
 namespace vesselmesh::flow {

@@ -1,13 +1,13 @@
 #include "flow/simulate.h"
 
 #include "flow/checkpoint.h"
-#include "flow/linear_solver.h"
 #include "flow/navier_stokes.h"
 #include "io/atomic_file.h"
 #include "io/msh.h"
 #include "io/volume_file.h"
 #include "io/vtk_formats.h"
 #include "mesh/error.h"
+#include "parallel/processes.h"
 #include "post/indices.h"
 #include "post/wss.h"
 
@@ -175,7 +175,7 @@ std::pair<post::WssIndexAccumulator::State, std::vector<int>> gather_indices(
       packed.push_back(mine.magnitude_integral[k]);
       packed.push_back(mine.change[k]);
     }
-  const std::vector<double> all = gather_to_first(packed);
+  const std::vector<double> all = parallel::gather_to_first(packed);
   post::WssIndexAccumulator::State whole{mine.samples, mine.start, mine.last_time, {}, {}, {}, {}};
   std::vector<int> points;
   std::vector<size_t> order(all.size() / kWidth);
@@ -293,7 +293,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   // never read it); each assembles its own rows, computes the wall shear stress of its part of the
   // wall and writes its pieces of the results (pieces/, joined by .pvtu / .pvtp files the first
   // writes). On one process the results are whole files, the mesh as read.
-  const int ranks = process_count(), rank = process_rank();
+  const int ranks = parallel::process_count(), rank = parallel::process_rank();
   const bool writer = rank == 0, pieces = ranks > 1;
   const Reporter& reporter = writer ? all_reporter : silent_reporter();
   FlowCase fc = input_case;
@@ -357,9 +357,9 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
     wall = whole_wall(mesh, wall_tags, fc);
   }
   NavierStokes ns(std::move(part), fc, reporter);
-  const int wall_points = pieces ? static_cast<int>(sum_all({static_cast<double>(wall.owned_points)})[0])
+  const int wall_points = pieces ? static_cast<int>(parallel::sum_all({static_cast<double>(wall.owned_points)})[0])
                                  : wall.mesh.num_points();
-  const int fallbacks = pieces ? static_cast<int>(sum_all({static_cast<double>(wall.owned_fallbacks)})[0])
+  const int fallbacks = pieces ? static_cast<int>(parallel::sum_all({static_cast<double>(wall.owned_fallbacks)})[0])
                                : wall.shear->face_fallbacks();
   reporter.info(fmt::format("wall shear stress: {} method on {} wall points{}", fc.wss_method, wall_points,
                             fallbacks > 0 ? fmt::format(" ({} by their faces: too few neighbours for a quadratic)",
@@ -394,8 +394,8 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
   summary.partition = partition;
   // Every process's peak resident memory (MB), gathered (every process calls it).
   const auto gather_memory = [&]() {
-    summary.peak_memory_mb = gather_all(peak_memory_mb());
-    summary.library_memory_mb = gather_all(file_memory_mb());
+    summary.peak_memory_mb = parallel::gather_all(peak_memory_mb());
+    summary.library_memory_mb = parallel::gather_all(file_memory_mb());
     summary.own_memory_mb.resize(summary.peak_memory_mb.size());
     for (size_t r = 0; r < summary.own_memory_mb.size(); ++r)
       summary.own_memory_mb[r] = summary.peak_memory_mb[r] - summary.library_memory_mb[r];
@@ -509,7 +509,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
       return name + "." + ext;
     }
     write_piece(fmt::format("{}/pieces/{}_{}.{}", output_dir, name, rank, ext));
-    any_process(false);  // every piece written
+    parallel::any_process(false);  // every piece written
     if (writer) {
       std::vector<std::string> sources;
       for (int r = 0; r < ranks; ++r) sources.push_back(fmt::format("pieces/{}_{}.{}", name, r, ext));
@@ -636,7 +636,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
       std::sort(wanted.begin(), wanted.end());
       c.flow = read_checkpoint_pieces(checkpoint_path, c, wanted, mesh_points);
     }
-    if (any_process(writer && c.fingerprint != fingerprint))
+    if (parallel::any_process(writer && c.fingerprint != fingerprint))
       throw InputError(fmt::format("{}: the checkpoint is of another mesh or time step than {}'s; run the case without "
                                    "--restart (or into another folder)",
                                    checkpoint_path, fc.path));
@@ -715,7 +715,7 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
           save(r.time, in_window ? &tau : nullptr,
                k + 1 == steps || (fc.fluid_every > 0 && r.step % fc.fluid_every == 0));
         // Every process stops at the same step (a signal may reach them apart).
-        const bool stop = any_process(stop_signal != 0);
+        const bool stop = parallel::any_process(stop_signal != 0);
         if (stop || k + 1 == steps || (fc.checkpoint_every > 0 && r.step % fc.checkpoint_every == 0))
           write_checkpoint_now();
         if (stop) {

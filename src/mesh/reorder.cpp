@@ -1,6 +1,7 @@
 #include "mesh/reorder.h"
 
 #include "mesh/error.h"
+#include "mesh/point_graph.h"
 
 #include <algorithm>
 #include <numeric>
@@ -8,44 +9,10 @@
 namespace vesselmesh::mesh {
 namespace {
 
-// The point graph in compressed rows (neighbours sorted, the point itself left out).
-struct PointGraph {
-  std::vector<int> start, next;
-  int degree(int v) const { return start[v + 1] - start[v]; }
-};
-
-template <typename Cell>
-void add_cell_pairs(const std::vector<Cell>& cells, std::vector<std::pair<int, int>>& pairs) {
-  for (const Cell& c : cells)
-    for (int a : c)
-      for (int b : c)
-        if (a != b) pairs.emplace_back(a, b);
-}
-
-PointGraph point_graph(const TetMesh& mesh) {
-  std::vector<std::pair<int, int>> pairs;
-  pairs.reserve(12 * mesh.tets.size() + 30 * mesh.prisms.size());
-  add_cell_pairs(mesh.tets, pairs);
-  add_cell_pairs(mesh.prisms, pairs);
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  PointGraph g;
-  const int n = mesh.num_points();
-  g.start.assign(n + 1, 0);
-  for (const auto& [a, b] : pairs) {
-    VM_CHECK(a >= 0 && a < n && b >= 0 && b < n, "cuthill_mckee_order: a cell's point is out of range");
-    ++g.start[a + 1];
-  }
-  for (int v = 0; v < n; ++v) g.start[v + 1] += g.start[v];
-  g.next.resize(pairs.size());
-  for (size_t k = 0; k < pairs.size(); ++k) g.next[k] = pairs[k].second;
-  return g;
-}
-
 }  // namespace
 
 std::vector<int> cuthill_mckee_order(const TetMesh& mesh) {
-  const PointGraph g = point_graph(mesh);
+  const PointGraph g = point_graph(mesh.num_points(), mesh.tets, mesh.prisms);
   const int n = mesh.num_points();
   std::vector<int> order;
   order.reserve(n);

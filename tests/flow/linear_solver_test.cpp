@@ -1,6 +1,7 @@
 #include "flow/linear_solver.h"
 
 #include "mesh/error.h"
+#include "parallel/processes.h"
 
 #include <gtest/gtest.h>
 
@@ -98,7 +99,7 @@ TEST(LinearSolver, RefusedOptionsAreOptionErrors) {
   EXPECT_THROW(LinearSolver(pattern, 1, time_step_options(), "-pc_type no_such_preconditioner"), OptionError);
 }
 
-TEST(LinearSolver, OneProcessHere) { EXPECT_EQ(process_count(), 1); }
+TEST(LinearSolver, OneProcessHere) { EXPECT_EQ(parallel::process_count(), 1); }
 
 // Solves (A + shift I) x = b for the known x of `exact` and checks the answer.
 SolveStats solve_shifted(LinearSolver& solver, const SparsePattern& pattern, std::vector<double> values,
