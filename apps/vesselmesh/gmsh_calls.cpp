@@ -1,6 +1,6 @@
 // The library's functions that call Gmsh, as this program has them: each opens Gmsh's module
-// on first use and forwards to it (see io/gmsh_module.h for why).
-#include "io/gmsh_module.h"
+// on first use and forwards to it (see modules/gmsh_module.h for why).
+#include "modules/gmsh_module.h"
 #include "io/msh.h"
 #include "modules.h"
 #include "volume/gmsh_fill.h"

@@ -1,5 +1,5 @@
 // The modules this program opens when a command needs them (Gmsh's and PETSc's code: see
-// io/gmsh_module.h and flow/petsc_module.h): looked for beside the program (a build folder),
+// modules/gmsh_module.h and modules/petsc_module.h): looked for beside the program (a build folder),
 // then in ../lib/vesselmesh (an installed program).
 #pragma once
 

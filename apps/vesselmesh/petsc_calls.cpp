@@ -1,7 +1,7 @@
 // The library's PETSc solver as this program has it: the LinearSolver here holds one made inside
-// PETSc's module, opened on first use (see flow/petsc_module.h for why).
+// PETSc's module, opened on first use (see modules/petsc_module.h for why).
 #include "flow/linear_solver.h"
-#include "flow/petsc_module.h"
+#include "modules/petsc_module.h"
 #include "parallel/processes.h"
 #include "io/hdf5_file.h"
 #include "modules.h"

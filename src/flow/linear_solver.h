@@ -70,7 +70,7 @@ struct SolveStats {
 // residual stalled at the tolerance, 9e-7 on the 180-degree bend of the Newton test, while the
 // change fell below 1e-8; now 2e-9 there, 578 linear iterations for Newton's 15 against 497.)
 // (Inline, as the other option strings: the program has them without opening PETSc's module,
-// flow/petsc_module.h.)
+// modules/petsc_module.h.)
 // GMRES's classical Gram-Schmidt refined where it loses orthogonality (PETSc's refine_ifneeded): over
 // its long cycles (up to 200 vectors) it did, and broke down on the carotid bifurcation at Re 300
 // (bench/steady_vessels.sh, 294k unknowns: DIVERGED_BREAKDOWN after 200 iterations at its last

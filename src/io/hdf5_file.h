@@ -1,6 +1,6 @@
 // HDF5 files (the XDMF export's heavy data, io/export.h), written from one process with the HDF5
 // library PETSc's build brings (Debian's hdf5-openmpi: one library in the process, as PETSc's).
-// Built with PETSc's code (the program opens it with that module, flow/petsc_module.h).
+// Built with PETSc's code (the program opens it with that module, modules/petsc_module.h).
 #pragma once
 
 #include <cstdint>

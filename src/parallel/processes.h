@@ -3,7 +3,7 @@
 // function here is called by every process unless it says otherwise; on one process each is
 // trivial (nothing is sent). The flow stage is built on it (flow/mesh_part.h distributes a mesh,
 // flow/navier_stokes.h sums and gathers); PETSc's headers stay in processes.cpp, and the program
-// reaches it through PETSc's module as it reaches the solver (flow/petsc_module.h).
+// reaches it through PETSc's module as it reaches the solver (modules/petsc_module.h).
 #pragma once
 
 #include <functional>

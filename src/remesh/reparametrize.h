@@ -38,7 +38,7 @@ namespace vesselmesh::remesh {
 
 enum class GmshAlgorithm { delaunay, frontal, meshadapt, bamg };
 
-// Inline: the program parses these without opening Gmsh's module (io/gmsh_module.h).
+// Inline: the program parses these without opening Gmsh's module (modules/gmsh_module.h).
 inline GmshAlgorithm parse_gmsh_algorithm(const std::string& name) {  // OptionError for an unknown name
   if (name == "delaunay") return GmshAlgorithm::delaunay;
   if (name == "frontal") return GmshAlgorithm::frontal;

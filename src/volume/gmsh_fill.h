@@ -1,7 +1,7 @@
 // The interior's tetrahedra by Gmsh's 3D algorithms (Delaunay, Frontal, HXT), for
 // fill_tetrahedra (volume/fill.h), which documents the arguments and the result. Gmsh's calls
 // live here so that they can sit in the module the program opens only when it needs Gmsh
-// (io/gmsh_module.h).
+// (modules/gmsh_module.h).
 #pragma once
 
 #include "volume/fill.h"

@@ -114,8 +114,8 @@ TEST(Cli, StudyRefusesABadReferenceInOneLine) {
   }
 }
 
-// Gmsh and PETSc are modules the program opens when a command needs them (io/gmsh_module.h,
-// flow/petsc_module.h). A copy of the program without them runs the commands that use neither;
+// Gmsh and PETSc are modules the program opens when a command needs them (modules/gmsh_module.h,
+// modules/petsc_module.h). A copy of the program without them runs the commands that use neither;
 // one that needs Gmsh fails with exit 2, names the module and writes nothing (PETSc's: see
 // SimulateRunsTheExampleCase).
 TEST(Cli, GmshIsOpenedOnlyByTheCommandsThatNeedIt) {

@@ -1,5 +1,5 @@
 // The entry table of libvesselmesh-petsc.so (see petsc_module.h); built into the module only.
-#include "flow/petsc_module.h"
+#include "modules/petsc_module.h"
 
 extern "C" __attribute__((visibility("default"))) const vesselmesh::flow::PetscCalls* vesselmesh_petsc_calls() {
   using namespace vesselmesh::flow;

@@ -1,5 +1,5 @@
 // The entry table of libvesselmesh-gmsh.so (see gmsh_module.h); built into the module only.
-#include "io/gmsh_module.h"
+#include "modules/gmsh_module.h"
 
 #include "io/msh.h"
 #include "volume/gmsh_fill.h"

@@ -1,5 +1,5 @@
 // PETSc, loaded only when a command needs it (the flow solver; the HDF5 its build brings, for the
-// XDMF export, io/hdf5_file.h), as Gmsh is (io/gmsh_module.h):
+// XDMF export, io/hdf5_file.h), as Gmsh is (modules/gmsh_module.h):
 // PETSc and what it brings (MPI, hypre, MUMPS, Trilinos, ...) cost every command 0.07-0.09 s
 // of symbol binding at start. flow/linear_solver.cpp is built into vesselmesh_lib, which the
 // tests and benchmarks link with PETSc, and into the module libvesselmesh-petsc.so, which the
@@ -15,7 +15,7 @@ namespace vesselmesh::flow {
 inline constexpr const char* kPetscModuleFile = "libvesselmesh-petsc.so";
 
 // The module's entry points: a LinearSolver made, used and destroyed inside the module; `layout`
-// first, as in io/gmsh_module.h (raise it when this table or a type it passes changes).
+// first, as in modules/gmsh_module.h (raise it when this table or a type it passes changes).
 inline constexpr int kPetscCallsLayout = 15;
 struct PetscCalls {
   int layout;

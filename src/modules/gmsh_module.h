@@ -9,6 +9,9 @@
 // benchmarks link with Gmsh as usual, and into a module, libvesselmesh-gmsh.so, that the
 // program opens on the first call of one of those functions (apps/vesselmesh/gmsh_calls.cpp
 // defines them for the program, each forwarding to the module's table below).
+// The tables of the program's modules (this one and modules/petsc_module.h) sit above the stages
+// whose functions they list (io, remesh, volume; flow, parallel), so that includes run one way:
+// no stage includes them; their namespaces stay those of the stages they serve.
 #pragma once
 
 #include "mesh/reporter.h"
