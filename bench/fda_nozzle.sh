@@ -11,7 +11,8 @@
 # JET=SIZE refines the interior along the jet (within 3 mm of the axis from the expansion to z = 85 mm,
 # `volume --refine`; SIZE in mm), where the distance sizing leaves the outlet pipe's core at HMAX_MM:
 # the steady jet's decay past z = 30 mm is the mesh's (three levels of the defaults' sizing, ratio 1.31
-# and 1.15 in h: 0.483, 0.542, 0.571 m/s at z = 40 mm against the labs' 0.625).
+# and 1.15 in h: 0.483, 0.542, 0.571 m/s at z = 40 mm against the labs' 0.625; JET=0.35 on the coarsest
+# walls: 0.640; docs/validation/fda_nozzle.md).
 # The measurements: ../shared/data/reference/fda_nozzle/SE_exp_0500.zip beside the checkout (or
 # $FDA_ZIP); they are read from there, never copied into the project. Set NP=K to run the solver
 # under `mpirun -np K`. About 30 minutes on 2 cores with the defaults (490k unknowns, 16 s a step).
