@@ -115,10 +115,18 @@ constexpr const char* kViewerScript = R"JS(
     status.textContent = JSON.stringify({drawn: views.length, errors: errors, rects: rects,
                                          milliseconds: Math.round(performance.now())});
   }
+  var focus = /[?&]view3d(=([a-z]+))?/.exec(window.location.search);
+  // The views alone: report.html?view3d (or ?view3d=difference); the rule also hides what follows.
+  if (focus) document.documentElement.className += ' view3d-only';
+  function show() {
   try {
-    var focus = /[?&]view3d(=([a-z]+))?/.exec(window.location.search);
-    // The views alone: report.html?view3d (or ?view3d=difference); the rule also hides what follows.
-    if (focus) document.documentElement.className += ' view3d-only';
+    // three.js and its controls, kept as text until the views are wanted: parsing them is most of
+    // the view's cost, which a reader who never scrolls here does not pay.
+    ['view3d-three', 'view3d-controls'].forEach(function (id) {
+      var script = document.createElement('script');
+      script.text = document.getElementById(id).textContent;
+      document.head.appendChild(script);
+    });
     var data = JSON.parse(document.getElementById('view3d-data').textContent);
     var bytes = function (s) {
       var b = atob(s), u = new Uint8Array(b.length);
@@ -232,6 +240,19 @@ constexpr const char* kViewerScript = R"JS(
     errors.push(String(e && e.stack ? e.stack : e));
     finish([]);
   }
+  }
+  // Drawn when the section comes near the window (at once with ?view3d).
+  if (focus || !('IntersectionObserver' in window)) {
+    show();
+  } else {
+    var seen = new IntersectionObserver(function (entries) {
+      if (entries.some(function (e) { return e.isIntersecting; })) {
+        seen.disconnect();
+        show();
+      }
+    }, {rootMargin: '400px'});
+    seen.observe(document.getElementById('view3d'));
+  }
 })();
 )JS";
 
@@ -322,8 +343,8 @@ std::string view3d_html(const ViewScene& scene, const ThreeScripts& scripts) {
   html += "<pre id=\"view3d-status\" style=\"display:none\">pending</pre>\n";
   html += "<script>window.__view3dErrors = window.__view3dErrors || []; window.addEventListener('error', "
           "function (e) { window.__view3dErrors.push(String(e.message)); });</script>\n";
-  html += "<script>" + script_safe(scripts.three) + "\n</script>\n";
-  html += "<script>" + script_safe(scripts.controls) + "\n</script>\n";
+  html += "<script type=\"text/x-three\" id=\"view3d-three\">" + script_safe(scripts.three) + "\n</script>\n";
+  html += "<script type=\"text/x-three\" id=\"view3d-controls\">" + script_safe(scripts.controls) + "\n</script>\n";
   html += "<script type=\"application/json\" id=\"view3d-data\">" + script_safe(data.dump()) + "</script>\n";
   html += std::string("<script>") + kViewerScript + "</script>\n</section>\n";
   return html;

@@ -55,7 +55,8 @@ struct ThreeScripts {
 // From $VESSELMESH_THREE_DIR, else Debian's /usr/share/javascript/three; nothing when absent.
 std::optional<ThreeScripts> read_three_scripts();
 
-// The view as one HTML block (a <section id="view3d"> with its scripts). Opening the report with
+// The view as one HTML block (a <section id="view3d"> with its scripts; three.js kept as text and run
+// when the section comes near the window, so that the rest of the report opens without it). Opening the report with
 // "?view3d" after its file name shows this section alone ("?view3d=difference": in the difference
 // mode). When drawn, the page's element #view3d-status holds JSON: {"drawn": views, "errors":
 // [messages], "rects": [[x, y, w, h] per view, CSS pixels], "milliseconds": from the page's start}.
