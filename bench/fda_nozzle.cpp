@@ -38,6 +38,9 @@ namespace {
 using namespace vesselmesh;
 using Curve = std::vector<std::pair<double, double>>;  // (z in mm, value), increasing z
 
+// The throat's mean velocity at the data files' flow, m/s: Q / (pi r_t^2), the RMS differences' scale.
+const double throat_mean = 5.20624e-6 / (M_PI * 4e-6);
+
 // The rows of section `keyword` of a conformance file (none when the laboratory has none).
 Curve read_section(const std::filesystem::path& file, const std::string& keyword, double z_scale) {
   std::ifstream in(file);
@@ -156,7 +159,6 @@ int run(int argc, char** argv) {
     const post::FluidSample s = post::sample_points(f, locator, {Vec3(0.0, 0.0, z)})[0];
     return s.inside ? s.velocity.z() : std::nan("");
   };
-  const double throat_mean = 5.20624e-6 / (M_PI * 4e-6);  // m/s, Q / (pi r_t^2)
   fmt::print("\ncenterline axial velocity (m/s)\n{:>9} {:>9} {:>17} {:>9} {:>9}\n", "z mm", "labs", "range", "ours",
              "diff");
   std::string csv = "z_mm,labs_mean_m_s,labs_min_m_s,labs_max_m_s,labs,ours_m_s\n";
@@ -270,7 +272,6 @@ int series(int argc, char** argv) {
     velocity[k] = read_csv(level[k] + "/centerline_velocity.csv");  // z, mean, min, max, labs, ours
     if (velocity[k].size() != velocity[0].size()) throw InputError(level[k] + ": other stations than the finest's");
   }
-  const double throat_mean = 5.20624e-6 / (M_PI * 4e-6);
   fmt::print("levels (finest first): {:.0f}, {:.0f}, {:.0f} points; r21 = {:.3f}, r32 = {:.3f} (in h = N^-1/3)\n",
              points[0], points[1], points[2], std::cbrt(points[0] / points[1]), std::cbrt(points[1] / points[2]));
   fmt::print("{:>7} {:>8} {:>17} {:>8} {:>8} {:>8} {:>6} {:>9} {:>8}  {}\n", "z mm", "labs", "range", "fine", "medium",

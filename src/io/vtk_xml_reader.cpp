@@ -6,6 +6,7 @@
 #include "io/vtk_internal.h"
 
 #include "io/atomic_file.h"
+#include "io/base64.h"
 
 #include "mesh/error.h"
 
@@ -99,35 +100,6 @@ class XmlSurfaceReader {
   TetMesh* volume_ = nullptr;  // set while reading a volume: its cells go there
   std::vector<long long> cell_of_tet_, cell_of_prism_;
 };
-
-// Decodes base64 from `text` at `pos` (whitespace skipped) until `count` bytes are out or the
-// base64 stops.
-std::string decode_base64(std::string_view text, size_t pos, size_t count) {
-  auto value = [](char c) -> int {
-    if (c >= 'A' && c <= 'Z') return c - 'A';
-    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
-    if (c >= '0' && c <= '9') return c - '0' + 52;
-    if (c == '+') return 62;
-    if (c == '/') return 63;
-    return -1;
-  };
-  std::string out;
-  unsigned int buffer = 0;
-  int bits = 0;
-  for (; pos < text.size() && out.size() < count; ++pos) {
-    const char c = text[pos];
-    if (c == ' ' || c == '\n' || c == '\r' || c == '\t') continue;
-    const int v = value(c);
-    if (v < 0) break;
-    buffer = (buffer << 6) | static_cast<unsigned int>(v);
-    bits += 6;
-    if (bits >= 8) {
-      bits -= 8;
-      out.push_back(static_cast<char>((buffer >> bits) & 0xff));
-    }
-  }
-  return out;
-}
 
 int word_type(const std::string& type) {
   static const std::pair<const char*, int> types[] = {

@@ -126,14 +126,11 @@ void view_section(Document& doc, const StudyConfig& config, const std::vector<co
   scene.unit = unit;
   scene.high = high > 0.0 ? high : 1.0;
   scene.reference = pictured.size() - 1;
-  const auto magnitude = [](const post::WallField& w) {
-    std::vector<double> m;
-    m.reserve(w.wss.size());
-    for (const Vec3& t : w.wss) m.push_back(t.norm());
-    return m;
-  };
+  std::vector<std::vector<double>> magnitude(pictured.size());
+  for (size_t k = 0; k < pictured.size(); ++k)
+    for (const Vec3& t : walls[k].wss) magnitude[k].push_back(t.norm());
   for (size_t k = 0; k < pictured.size(); ++k) {
-    scene.walls.push_back(viewed_wall(pictured[k]->name, walls[k].mesh, magnitude(walls[k])));
+    scene.walls.push_back(viewed_wall(pictured[k]->name, walls[k].mesh, magnitude[k]));
     for (const post::Ring& ring : pictured[k]->rings) {
       std::vector<Vec3> line;
       for (const post::RingSample& sample : ring.samples) line.push_back(sample.point);
@@ -143,7 +140,7 @@ void view_section(Document& doc, const StudyConfig& config, const std::vector<co
   }
   std::vector<double> spread;  // |differences| of every compared wall, for the colour range
   for (size_t k = 0; k + 1 < pictured.size(); ++k) {
-    scene.walls[k].difference = difference_on(scene.walls.back(), walls[k].mesh, magnitude(walls[k]));
+    scene.walls[k].difference = difference_on(scene.walls.back(), walls[k].mesh, magnitude[k]);
     for (double d : scene.walls[k].difference) spread.push_back(std::abs(d));
   }
   if (!spread.empty()) {

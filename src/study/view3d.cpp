@@ -1,6 +1,7 @@
 #include "study/view3d.h"
 
 #include "io/atomic_file.h"
+#include "io/base64.h"
 #include "mesh/decimate.h"
 #include "study/chart.h"
 #include "study/picture.h"
@@ -21,25 +22,9 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-std::string base64(const void* data, size_t size) {
-  static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  const auto* in = static_cast<const unsigned char*>(data);
-  std::string out;
-  out.reserve((size + 2) / 3 * 4);
-  for (size_t i = 0; i < size; i += 3) {
-    const uint32_t n = (uint32_t{in[i]} << 16) | (i + 1 < size ? uint32_t{in[i + 1]} << 8 : 0u) |
-                       (i + 2 < size ? uint32_t{in[i + 2]} : 0u);
-    out += kDigits[(n >> 18) & 63];
-    out += kDigits[(n >> 12) & 63];
-    out += i + 1 < size ? kDigits[(n >> 6) & 63] : '=';
-    out += i + 2 < size ? kDigits[n & 63] : '=';
-  }
-  return out;
-}
-
 // Little-endian float32 and uint32 arrays (the machines that run the report and the browsers that
 // read it are little-endian; typed arrays in the browser read the platform's order).
-std::string floats(const std::vector<float>& v) { return base64(v.data(), v.size() * sizeof(float)); }
+std::string floats(const std::vector<float>& v) { return io::encode_base64(v.data(), v.size() * sizeof(float)); }
 
 std::string positions(const TriMesh& mesh) {
   std::vector<float> v;
@@ -54,7 +39,7 @@ std::string triangles(const TriMesh& mesh) {
   v.reserve(3 * mesh.triangles.size());
   for (const Triangle& t : mesh.triangles)
     for (int k = 0; k < 3; ++k) v.push_back(static_cast<uint32_t>(t[k]));
-  return base64(v.data(), v.size() * sizeof(uint32_t));
+  return io::encode_base64(v.data(), v.size() * sizeof(uint32_t));
 }
 
 std::string values(const std::vector<double>& v) { return floats(std::vector<float>(v.begin(), v.end())); }

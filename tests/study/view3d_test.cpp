@@ -1,6 +1,7 @@
 #include "study/view3d.h"
 
 #include "io/atomic_file.h"
+#include "io/base64.h"
 #include "study/picture.h"
 #include "synth/shapes.h"
 #include "test_support.h"
@@ -15,26 +16,8 @@
 namespace vesselmesh::study {
 namespace {
 
-std::string unbase64(const std::string& text) {
-  std::string out;
-  uint32_t bits = 0;
-  int count = 0;
-  for (char c : text) {
-    const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    const char* at = std::strchr(digits, c);
-    if (c == '=' || !at) break;
-    bits = (bits << 6) | static_cast<uint32_t>(at - digits);
-    count += 6;
-    if (count >= 8) {
-      count -= 8;
-      out += static_cast<char>((bits >> count) & 255);
-    }
-  }
-  return out;
-}
-
 std::vector<float> floats_of(const std::string& text) {
-  const std::string bytes = unbase64(text);
+  const std::string bytes = io::decode_base64(text);
   std::vector<float> v(bytes.size() / sizeof(float));
   std::memcpy(v.data(), bytes.data(), v.size() * sizeof(float));
   return v;
