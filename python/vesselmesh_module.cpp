@@ -198,24 +198,8 @@ study::StudyConfig study_of(const py::object& given, const std::string& output) 
 // The centerlines and distance map of a surface (ValueError when it has no ends to trace between).
 centerline::DistanceMap distance_of(const TriMesh& mesh) { return centerline::distance_map(mesh, centerline::extract(mesh)); }
 
-}  // namespace
-
-PYBIND11_MODULE(vesselmesh, m) {
-  m.doc() = "vesselmesh: vessel lumen surfaces to curvature- and radius-adapted surface meshes, boundary-layer volume "
-            "meshes, flow and wall shear stress. Lengths in mm, points (n, 3) float64, triangles (m, 3) int32. "
-            "GPL-3.0-or-later.";
-  m.attr("__version__") = VESSELMESH_VERSION;
-  static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
-  py::register_exception_translator([](std::exception_ptr p) {
-    try {
-      if (p) std::rethrow_exception(p);
-    } catch (const InputError& e) {
-      PyErr_SetString(input_error.ptr(), e.what());
-    } catch (const OptionError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
-    }
-  });
-
+// Surfaces: reading and writing, their ends, curvature, centerlines and distance map.
+void define_surface_functions(py::module_& m) {
   m.def(
       "read_surface",
       [](const std::string& path, const std::string& units, bool repair) {
@@ -314,6 +298,10 @@ PYBIND11_MODULE(vesselmesh, m) {
       },
       py::arg("points"), py::arg("triangles"),
       "Each surface point's distance to the centerlines and the inscribed radius there (mm).");
+}
+
+// Meshing: size fields, remeshing, flow extensions, volumes read, made and written.
+void define_meshing_functions(py::module_& m) {
   m.def(
       "size_field",
       [](const Points& points, const Indices& triangles, const std::string& kind, double target_triangles) {
@@ -417,6 +405,10 @@ PYBIND11_MODULE(vesselmesh, m) {
         io::write_volume(path, mesh);
       },
       py::arg("path"), py::arg("volume"), "Writes a volume dict as .msh (Gmsh 4.1, for `simulate`) or .vtu.");
+}
+
+// The flow, the mesh-impact study and the WSS along a ring.
+void define_flow_functions(py::module_& m) {
   m.def(
       "simulate",
       [](const py::object& case_given, const std::string& output, const std::string& mesh) {
@@ -481,4 +473,27 @@ PYBIND11_MODULE(vesselmesh, m) {
       py::arg("results"), py::arg("point"), py::arg("normal"), py::arg("time") = py::none(),
       "WSS magnitude (Pa) along the ring where the plane (point, normal; mm) cuts the wall of `simulate`'s results, "
       "at `time` (s; linear between saved frames; default the last): arc length (mm), angle (degrees), wss.");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(vesselmesh, m) {
+  m.doc() = "vesselmesh: vessel lumen surfaces to curvature- and radius-adapted surface meshes, boundary-layer volume "
+            "meshes, flow and wall shear stress. Lengths in mm, points (n, 3) float64, triangles (m, 3) int32. "
+            "GPL-3.0-or-later.";
+  m.attr("__version__") = VESSELMESH_VERSION;
+  static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      PyErr_SetString(input_error.ptr(), e.what());
+    } catch (const OptionError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
+
+  define_surface_functions(m);
+  define_meshing_functions(m);
+  define_flow_functions(m);
 }

@@ -92,6 +92,117 @@ std::string quality_text(const volume::VolumeQuality& q) {
   return text;
 }
 
+// The command's options as given.
+struct VolumeCommandOptions {
+  SurfaceInput surface;
+  std::string output, algorithm = "delaunay", end_names;
+  std::vector<std::string> ends;
+  std::vector<std::string> refine;
+  volume::VolumeOptions volume;
+  int target_points = 0;
+  CommonOptions common;
+};
+
+// What `vesselmesh volume` does with them: the volume made, checked, written and reported.
+int run_volume(const VolumeCommandOptions& o) {
+    io::check_volume_output(o.output);
+    volume::VolumeOptions options = o.volume;
+    options.algorithm = volume::parse_fill_algorithm(o.algorithm);
+    if (!o.end_names.empty()) options.end_names = split(o.end_names, ',');
+    for (const std::string& text : o.refine) options.interior.regions.push_back(parse_region(text));
+    for (const std::string& text : o.ends) {
+      auto [name, point] = parse_named_point(text, "--end");
+      options.end_at.push_back({name, point});
+    }
+    TerminalReporter reporter(o.common.quiet);
+    const auto start = std::chrono::steady_clock::now();
+    const CheckedSurface surface = read_surface_input(o.surface, reporter);
+    const TriMesh& wall = surface.file.mesh;
+    if (surface.ends.empty())
+      throw InputError(fmt::format("{}: the surface has no open or flat-capped end: a flow domain needs an inlet and "
+                                   "an outlet; cut the vessel's ends open",
+                                   o.surface.path));
+    volume::check_interior_size_options(options.interior);
+    // The layer's thickness and the interior's core bound follow the local radius: the
+    // distance map (without a layer, a surface whose centerlines cannot be traced is
+    // filled without the core bound, said).
+    std::vector<double> radius;
+    try {
+      radius = centerline::distance_map(wall, centerline::extract(wall, {}, reporter)).radius;
+    } catch (const InputError& e) {
+      if (options.layer.layers > 0) throw;
+      reporter.warning(fmt::format("no centerlines ({}): the interior's core is not bounded by the radius",
+                                   e.what()));
+    }
+    const volume::VolumeResult result =
+        o.target_points > 0 ? volume::build_volume_with_points(wall, surface.ends, radius, options,
+                                                                o.target_points, 0.02, reporter)
+                             : volume::build_volume(wall, surface.ends, radius, options, reporter);
+    io::write_volume(o.output, result.mesh, {Field::scalar("radius", result.radius)});
+    const volume::VolumeQuality q = volume::measure_volume(result.mesh, result.radius);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const volume::VolumeReport& r = result.report;
+    if (o.common.json) {
+      Json ends = Json::array();
+      for (const volume::VolumeEnd& end : r.ends)
+        ends.push_back({{"name", end.name},
+                        {"tag", end.tag},
+                        {"center", to_json(end.center)},
+                        {"normal", to_json(end.normal)},
+                        {"radius", round_to(end.radius, 6)},
+                        {"capped_in_input", end.capped},
+                        {"cap_triangles", end.cap_triangles}});
+      Json json = quality_json(q);
+      json["input"] = o.surface.path;
+      json["output"] = o.output;
+      json["units"] = "mm";
+      json["algorithm"] = volume::fill_algorithm_name(options.algorithm);
+      json["layers"] = r.layers;
+      json["layer_cells"] = r.layer_tets + r.layer_prisms;
+      json["interior_tetrahedra"] = r.interior_tets;
+      json["interior_points"] = r.interior_points;
+      json["interior_size"] = {{"factor", r.interior_factor},
+                               {"gradation", options.interior.gradation},
+                               {"core_fraction", options.interior.core_fraction},
+                               {"refine", o.refine},
+                               {"at_wall_mm", {{"min", round_to(r.interior_size_min, 5)},
+                                               {"median", round_to(r.interior_size_median, 5)},
+                                               {"max", round_to(r.interior_size_max, 5)}}}};
+      json["wall_tag"] = r.wall_tag;
+      json["ends"] = ends;
+      json["slivers"] = {{"angle_deg", options.sliver_angle_deg},
+                         {"below_before", r.slivers.below_before},
+                         {"below_after", r.slivers.below_after},
+                         {"least_before_deg", round_to(r.slivers.least_before, 4)},
+                         {"least_after_deg", round_to(r.slivers.least_after, 4)},
+                         {"flips", r.slivers.flips},
+                         {"moves", r.slivers.moves},
+                         {"insertions", r.slivers.insertions},
+                         {"collapses", r.slivers.collapses}};
+      json["shrink"] = {{"wall_points", r.shrunk_vertices},
+                        {"least_fraction", round_to(r.least_fraction, 4)},
+                        {"least_at", to_json(r.least_at)}};
+      json["thicken"] = {{"angle_deg", options.layer.min_angle_deg},
+                         {"wall_points", r.thickened_vertices},
+                         {"most_fraction", round_to(r.most_fraction, 4)},
+                         {"most_at", to_json(r.most_at)},
+                         {"under_angle_prisms", r.under_angle_prisms},
+                         {"least_layer_angle_deg", round_to(r.least_layer_angle, 4)}};
+      json["split"] = {{"angle_deg", options.layer.split_angle_deg}, {"wall_edges", r.split_edges}};
+      json["seconds"] = round_to(seconds, 4);
+      print_json(json);
+    } else {
+      std::string names;
+      for (const volume::VolumeEnd& end : r.ends)
+        names += fmt::format("{}{} (tag {}) at {}", names.empty() ? "" : ", ", end.name, end.tag,
+                             mesh::format_point(end.center));
+      reporter.info(fmt::format("ends: {}", names));
+      reporter.info(quality_text(q));
+      reporter.info(fmt::format("{:.1f} s; wrote {} (mm)", seconds, o.output));
+    }
+    return 0;
+}
+
 }  // namespace
 
 Command add_volume_command(CLI::App& parent) {
@@ -106,16 +217,7 @@ Command add_volume_command(CLI::App& parent) {
       "radius (never finer than the wall), times --interior-size. "
       "Boundary tags: wall, inlet (the largest end unless --inlet), outlet_1, ... in the order of 'vesselmesh info'. "
       "Give a remeshed surface (vesselmesh remesh): the layer stands on its triangles");
-  struct Options {
-    SurfaceInput surface;
-    std::string output, algorithm = "delaunay", end_names;
-    std::vector<std::string> ends;
-    std::vector<std::string> refine;
-    volume::VolumeOptions volume;
-    int target_points = 0;
-    CommonOptions common;
-  };
-  auto o = std::make_shared<Options>();
+  auto o = std::make_shared<VolumeCommandOptions>();
   add_surface_input(*app, o->surface);
   app->add_option("-o,--output", o->output,
                   "Output volume mesh: .vtu (cell data tag, layer, column; point data radius) or .msh (Gmsh 4.1, physical "
@@ -181,104 +283,7 @@ Command add_volume_command(CLI::App& parent) {
                   "asks for a finer mesh (a jet and its shear layer). Repeat it for several regions");
   app->add_option("--threads", o->volume.threads, "Threads for HXT (0: all)")->check(CLI::NonNegativeNumber);
   add_common_options(*app, o->common);
-  return {app, [o] {
-            io::check_volume_output(o->output);
-            volume::VolumeOptions options = o->volume;
-            options.algorithm = volume::parse_fill_algorithm(o->algorithm);
-            if (!o->end_names.empty()) options.end_names = split(o->end_names, ',');
-            for (const std::string& text : o->refine) options.interior.regions.push_back(parse_region(text));
-            for (const std::string& text : o->ends) {
-              auto [name, point] = parse_named_point(text, "--end");
-              options.end_at.push_back({name, point});
-            }
-            TerminalReporter reporter(o->common.quiet);
-            const auto start = std::chrono::steady_clock::now();
-            const CheckedSurface surface = read_surface_input(o->surface, reporter);
-            const TriMesh& wall = surface.file.mesh;
-            if (surface.ends.empty())
-              throw InputError(fmt::format("{}: the surface has no open or flat-capped end: a flow domain needs an inlet and "
-                                           "an outlet; cut the vessel's ends open",
-                                           o->surface.path));
-            volume::check_interior_size_options(options.interior);
-            // The layer's thickness and the interior's core bound follow the local radius: the
-            // distance map (without a layer, a surface whose centerlines cannot be traced is
-            // filled without the core bound, said).
-            std::vector<double> radius;
-            try {
-              radius = centerline::distance_map(wall, centerline::extract(wall, {}, reporter)).radius;
-            } catch (const InputError& e) {
-              if (options.layer.layers > 0) throw;
-              reporter.warning(fmt::format("no centerlines ({}): the interior's core is not bounded by the radius",
-                                           e.what()));
-            }
-            const volume::VolumeResult result =
-                o->target_points > 0 ? volume::build_volume_with_points(wall, surface.ends, radius, options,
-                                                                        o->target_points, 0.02, reporter)
-                                     : volume::build_volume(wall, surface.ends, radius, options, reporter);
-            io::write_volume(o->output, result.mesh, {Field::scalar("radius", result.radius)});
-            const volume::VolumeQuality q = volume::measure_volume(result.mesh, result.radius);
-            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            const volume::VolumeReport& r = result.report;
-            if (o->common.json) {
-              Json ends = Json::array();
-              for (const volume::VolumeEnd& end : r.ends)
-                ends.push_back({{"name", end.name},
-                                {"tag", end.tag},
-                                {"center", to_json(end.center)},
-                                {"normal", to_json(end.normal)},
-                                {"radius", round_to(end.radius, 6)},
-                                {"capped_in_input", end.capped},
-                                {"cap_triangles", end.cap_triangles}});
-              Json json = quality_json(q);
-              json["input"] = o->surface.path;
-              json["output"] = o->output;
-              json["units"] = "mm";
-              json["algorithm"] = volume::fill_algorithm_name(options.algorithm);
-              json["layers"] = r.layers;
-              json["layer_cells"] = r.layer_tets + r.layer_prisms;
-              json["interior_tetrahedra"] = r.interior_tets;
-              json["interior_points"] = r.interior_points;
-              json["interior_size"] = {{"factor", r.interior_factor},
-                                       {"gradation", options.interior.gradation},
-                                       {"core_fraction", options.interior.core_fraction},
-                                       {"refine", o->refine},
-                                       {"at_wall_mm", {{"min", round_to(r.interior_size_min, 5)},
-                                                       {"median", round_to(r.interior_size_median, 5)},
-                                                       {"max", round_to(r.interior_size_max, 5)}}}};
-              json["wall_tag"] = r.wall_tag;
-              json["ends"] = ends;
-              json["slivers"] = {{"angle_deg", options.sliver_angle_deg},
-                                 {"below_before", r.slivers.below_before},
-                                 {"below_after", r.slivers.below_after},
-                                 {"least_before_deg", round_to(r.slivers.least_before, 4)},
-                                 {"least_after_deg", round_to(r.slivers.least_after, 4)},
-                                 {"flips", r.slivers.flips},
-                                 {"moves", r.slivers.moves},
-                                 {"insertions", r.slivers.insertions},
-                                 {"collapses", r.slivers.collapses}};
-              json["shrink"] = {{"wall_points", r.shrunk_vertices},
-                                {"least_fraction", round_to(r.least_fraction, 4)},
-                                {"least_at", to_json(r.least_at)}};
-              json["thicken"] = {{"angle_deg", options.layer.min_angle_deg},
-                                 {"wall_points", r.thickened_vertices},
-                                 {"most_fraction", round_to(r.most_fraction, 4)},
-                                 {"most_at", to_json(r.most_at)},
-                                 {"under_angle_prisms", r.under_angle_prisms},
-                                 {"least_layer_angle_deg", round_to(r.least_layer_angle, 4)}};
-              json["split"] = {{"angle_deg", options.layer.split_angle_deg}, {"wall_edges", r.split_edges}};
-              json["seconds"] = round_to(seconds, 4);
-              print_json(json);
-            } else {
-              std::string names;
-              for (const volume::VolumeEnd& end : r.ends)
-                names += fmt::format("{}{} (tag {}) at {}", names.empty() ? "" : ", ", end.name, end.tag,
-                                     mesh::format_point(end.center));
-              reporter.info(fmt::format("ends: {}", names));
-              reporter.info(quality_text(q));
-              reporter.info(fmt::format("{:.1f} s; wrote {} (mm)", seconds, o->output));
-            }
-            return 0;
-          }};
+  return {app, [o] { return run_volume(*o); }};
 }
 
 Command add_quality_command(CLI::App& parent) {
