@@ -90,6 +90,87 @@ std::string to_string(BoundaryType type) {
   return "?";
 }
 
+namespace {
+
+// One [[boundary]] table (`where` names it in messages; `seen`: the tags before it, this one added;
+// `backflow`: the case's coefficient, set when the table gives it).
+BoundaryCondition parse_boundary(const io::TomlReader& r, const toml::table* table, const std::string& where,
+                                 const std::string& path, std::set<std::string>& seen, double& backflow) {
+  r.known_keys(*table, where, {"tag", "type", "profile", "flow", "waveform", "scale", "resistance", "backflow",
+                               "harmonics", "proximal_resistance", "distal_resistance", "capacitance",
+                               "distal_pressure", "initial_pressure"});
+  const io::TomlView b(table);
+  BoundaryCondition bc;
+  bc.tag = r.text(b["tag"], where + ".tag", "");
+  if (bc.tag.empty()) r.fail(where + ".tag", "missing: the mesh tag this condition applies to");
+  if (!seen.insert(bc.tag).second) r.fail(where + ".tag", fmt::format("tag \"{}\" has two conditions", bc.tag));
+  const std::string type = r.text(b["type"], where + ".type", "");
+  if (type == "velocity") bc.type = BoundaryType::velocity;
+  else if (type == "traction") bc.type = BoundaryType::traction;
+  else if (type == "resistance") bc.type = BoundaryType::resistance;
+  else if (type == "rcr") bc.type = BoundaryType::rcr;
+  else if (type == "wall") bc.type = BoundaryType::wall;
+  else r.fail(where + ".type", fmt::format("\"{}\": expected velocity, traction, resistance, rcr or wall", type));
+
+  const auto only_for = [&](const char* key, BoundaryType allowed) {
+    if (b[key] && bc.type != allowed)
+      r.fail(where + "." + key, fmt::format("not used by a {} boundary", to_string(bc.type)));
+  };
+  only_for("profile", BoundaryType::velocity);
+  only_for("flow", BoundaryType::velocity);
+  only_for("waveform", BoundaryType::velocity);
+  only_for("scale", BoundaryType::velocity);
+  only_for("resistance", BoundaryType::resistance);
+  only_for("harmonics", BoundaryType::velocity);
+  for (const char* key : {"proximal_resistance", "distal_resistance", "capacitance", "distal_pressure",
+                          "initial_pressure"})
+    only_for(key, BoundaryType::rcr);
+  if (b["backflow"] && !is_natural(bc.type))
+    r.fail(where + ".backflow", "only traction, resistance and rcr boundaries have backflow stabilization");
+
+  if (bc.type == BoundaryType::velocity) {
+    const std::string profile = r.text(b["profile"], where + ".profile", "parabolic");
+    if (profile == "parabolic") bc.profile = Profile::parabolic;
+    else if (profile == "plug") bc.profile = Profile::plug;
+    else if (profile == "womersley") bc.profile = Profile::womersley;
+    else r.fail(where + ".profile", fmt::format("\"{}\": expected parabolic, plug or womersley", profile));
+    if (b["harmonics"] && bc.profile != Profile::womersley)
+      r.fail(where + ".harmonics", "only a womersley profile has harmonics");
+    bc.harmonics = r.integer(b["harmonics"], where + ".harmonics", bc.harmonics, 1);
+    if (b["flow"] && b["waveform"]) r.fail(where, "give `flow` or `waveform`, not both");
+    if (b["waveform"]) {
+      bc.waveform_file = io::resolve_path(path, r.text(b["waveform"], where + ".waveform", ""));
+      bc.flow = Waveform::read_csv(bc.waveform_file);
+    } else if (b["flow"]) {
+      bc.flow = Waveform::constant(r.number(b["flow"], where + ".flow", 0.0, false));
+    } else {
+      r.fail(where, "a velocity boundary needs `flow` (mL/s) or `waveform` (CSV: time s, flow mL/s)");
+    }
+    if (b["scale"]) bc.flow = bc.flow.scaled(r.number(b["scale"], where + ".scale", 1.0, false));
+  }
+  if (bc.type == BoundaryType::resistance) {
+    if (!b["resistance"]) r.fail(where + ".resistance", "missing: the resistance in Pa s/m3");
+    bc.resistance = r.number(b["resistance"], where + ".resistance", 0.0);
+  }
+  if (bc.type == BoundaryType::rcr) {
+    for (const char* key : {"proximal_resistance", "distal_resistance", "capacitance"})
+      if (!b[key])
+        r.fail(where + "." + key, std::string("missing: an rcr boundary needs proximal_resistance and "
+                                              "distal_resistance (Pa s/m3) and capacitance (m3/Pa)"));
+    bc.proximal_resistance = r.number(b["proximal_resistance"], where + ".proximal_resistance", 0.0, false);
+    if (bc.proximal_resistance < 0.0) r.fail(where + ".proximal_resistance", "must not be negative");
+    bc.distal_resistance = r.number(b["distal_resistance"], where + ".distal_resistance", 0.0);
+    bc.capacitance = r.number(b["capacitance"], where + ".capacitance", 0.0);
+    bc.distal_pressure = r.number(b["distal_pressure"], where + ".distal_pressure", 0.0, false);
+    if (b["initial_pressure"])
+      bc.initial_pressure = r.number(b["initial_pressure"], where + ".initial_pressure", 0.0, false);
+  }
+  if (b["backflow"]) backflow = r.number(b["backflow"], where + ".backflow", 1.0, false);
+  return bc;
+}
+
+}  // namespace
+
 FlowCase parse_case(const std::string& text, const std::string& path) {
   const toml::table parsed = io::parse_toml(text, path);
   const toml::table& root = parsed;
@@ -154,79 +235,8 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
   if (!root["boundary"] || !root["boundary"].is_array_of_tables())
     r.fail("boundary", "missing: one [[boundary]] table per tag of the mesh");
   std::set<std::string> seen;
-  for (const auto& [where, table] : r.tables(root, "boundary")) {
-    r.known_keys(*table, where, {"tag", "type", "profile", "flow", "waveform", "scale", "resistance", "backflow",
-                                 "harmonics", "proximal_resistance", "distal_resistance", "capacitance",
-                                 "distal_pressure", "initial_pressure"});
-    const io::TomlView b(table);
-    BoundaryCondition bc;
-    bc.tag = r.text(b["tag"], where + ".tag", "");
-    if (bc.tag.empty()) r.fail(where + ".tag", "missing: the mesh tag this condition applies to");
-    if (!seen.insert(bc.tag).second) r.fail(where + ".tag", fmt::format("tag \"{}\" has two conditions", bc.tag));
-    const std::string type = r.text(b["type"], where + ".type", "");
-    if (type == "velocity") bc.type = BoundaryType::velocity;
-    else if (type == "traction") bc.type = BoundaryType::traction;
-    else if (type == "resistance") bc.type = BoundaryType::resistance;
-    else if (type == "rcr") bc.type = BoundaryType::rcr;
-    else if (type == "wall") bc.type = BoundaryType::wall;
-    else r.fail(where + ".type", fmt::format("\"{}\": expected velocity, traction, resistance, rcr or wall", type));
-
-    const auto only_for = [&](const char* key, BoundaryType allowed) {
-      if (b[key] && bc.type != allowed)
-        r.fail(where + "." + key, fmt::format("not used by a {} boundary", to_string(bc.type)));
-    };
-    only_for("profile", BoundaryType::velocity);
-    only_for("flow", BoundaryType::velocity);
-    only_for("waveform", BoundaryType::velocity);
-    only_for("scale", BoundaryType::velocity);
-    only_for("resistance", BoundaryType::resistance);
-    only_for("harmonics", BoundaryType::velocity);
-    for (const char* key : {"proximal_resistance", "distal_resistance", "capacitance", "distal_pressure",
-                            "initial_pressure"})
-      only_for(key, BoundaryType::rcr);
-    if (b["backflow"] && !is_natural(bc.type))
-      r.fail(where + ".backflow", "only traction, resistance and rcr boundaries have backflow stabilization");
-
-    if (bc.type == BoundaryType::velocity) {
-      const std::string profile = r.text(b["profile"], where + ".profile", "parabolic");
-      if (profile == "parabolic") bc.profile = Profile::parabolic;
-      else if (profile == "plug") bc.profile = Profile::plug;
-      else if (profile == "womersley") bc.profile = Profile::womersley;
-      else r.fail(where + ".profile", fmt::format("\"{}\": expected parabolic, plug or womersley", profile));
-      if (b["harmonics"] && bc.profile != Profile::womersley)
-        r.fail(where + ".harmonics", "only a womersley profile has harmonics");
-      bc.harmonics = r.integer(b["harmonics"], where + ".harmonics", bc.harmonics, 1);
-      if (b["flow"] && b["waveform"]) r.fail(where, "give `flow` or `waveform`, not both");
-      if (b["waveform"]) {
-        bc.waveform_file = io::resolve_path(path, r.text(b["waveform"], where + ".waveform", ""));
-        bc.flow = Waveform::read_csv(bc.waveform_file);
-      } else if (b["flow"]) {
-        bc.flow = Waveform::constant(r.number(b["flow"], where + ".flow", 0.0, false));
-      } else {
-        r.fail(where, "a velocity boundary needs `flow` (mL/s) or `waveform` (CSV: time s, flow mL/s)");
-      }
-      if (b["scale"]) bc.flow = bc.flow.scaled(r.number(b["scale"], where + ".scale", 1.0, false));
-    }
-    if (bc.type == BoundaryType::resistance) {
-      if (!b["resistance"]) r.fail(where + ".resistance", "missing: the resistance in Pa s/m3");
-      bc.resistance = r.number(b["resistance"], where + ".resistance", 0.0);
-    }
-    if (bc.type == BoundaryType::rcr) {
-      for (const char* key : {"proximal_resistance", "distal_resistance", "capacitance"})
-        if (!b[key])
-          r.fail(where + "." + key, std::string("missing: an rcr boundary needs proximal_resistance and "
-                                                "distal_resistance (Pa s/m3) and capacitance (m3/Pa)"));
-      bc.proximal_resistance = r.number(b["proximal_resistance"], where + ".proximal_resistance", 0.0, false);
-      if (bc.proximal_resistance < 0.0) r.fail(where + ".proximal_resistance", "must not be negative");
-      bc.distal_resistance = r.number(b["distal_resistance"], where + ".distal_resistance", 0.0);
-      bc.capacitance = r.number(b["capacitance"], where + ".capacitance", 0.0);
-      bc.distal_pressure = r.number(b["distal_pressure"], where + ".distal_pressure", 0.0, false);
-      if (b["initial_pressure"])
-        bc.initial_pressure = r.number(b["initial_pressure"], where + ".initial_pressure", 0.0, false);
-    }
-    if (b["backflow"]) c.backflow = r.number(b["backflow"], where + ".backflow", 1.0, false);
-    c.boundaries.push_back(std::move(bc));
-  }
+  for (const auto& [where, table] : r.tables(root, "boundary"))
+    c.boundaries.push_back(parse_boundary(r, table, where, path, seen, c.backflow));
 
   const io::TomlView solver = root["solver"];
   if (solver && !solver.is_table()) r.fail("solver", "expected a table [solver]");

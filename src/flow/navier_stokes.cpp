@@ -346,7 +346,7 @@ void NavierStokes::set_state(const std::vector<Vec3>& velocity, double time) {
   s.step_count = 0;
 }
 
-FlowState NavierStokes::state() const {
+FlowState NavierStokes::gathered_state() const {
   const Impl& s = *impl_;
   FlowState out = own_state();  // its fields gathered whole onto the first process
   std::vector<double> mine(7 * s.owned);
@@ -424,11 +424,11 @@ void NavierStokes::restore(const FlowState& state) {
 double NavierStokes::time() const { return impl_->t; }
 int NavierStokes::steps() const { return impl_->step_count; }
 int NavierStokes::dofs() const { return kBlock * impl_->total_points; }
-const std::vector<Vec3>& NavierStokes::velocity() const {
+const std::vector<Vec3>& NavierStokes::gathered_velocity() const {
   impl_->publish();
   return impl_->u_mesh;
 }
-const std::vector<double>& NavierStokes::pressure() const {
+const std::vector<double>& NavierStokes::gathered_pressure() const {
   impl_->publish();
   return impl_->p_mesh;
 }

@@ -25,8 +25,10 @@
 // points), and after a solve receives only its ghost points' values. Every argument and result is
 // in the mesh's numbering.
 // Under MPI every process makes one and calls every member alike (they are collective); the
-// whole flow (velocity(), pressure()) is on every process when asked for, state()'s fields on the
-// first only (empty on the others).
+// whole flow (gathered_velocity(), gathered_pressure()) is on every process when asked for,
+// gathered_state()'s fields on the first only (empty on the others): the names say what they cost
+// under MPI; the distributed post-processing and the checkpoints use the local ones (local_velocity(),
+// own_state()).
 #pragma once
 
 #include "flow/case.h"
@@ -60,7 +62,7 @@ struct FlowState {
   std::vector<double> kinematic_pressure;
   std::vector<double> capacitor_pressure;  // per boundary of the case: an rcr end's P_c (Pa), else 0
   // The mesh points the fields are of, one per entry (own_state()); empty: every point, in the
-  // mesh's order (state()).
+  // mesh's order (gathered_state()).
   std::vector<int> points;
 };
 
@@ -159,7 +161,7 @@ class NavierStokes {
   // The whole state (its fields on the first process), and the stepping resumed from one: whole
   // (`points` empty) or by mesh point, holding at least this process's local points
   // (local_points()); InputError when its sizes do not fit or a local point is missing.
-  FlowState state() const;
+  FlowState gathered_state() const;
   void restore(const FlowState& state);
   // The mesh numbers of this process's points (its own, then its ghosts).
   const std::vector<int>& local_points() const;
@@ -170,9 +172,9 @@ class NavierStokes {
   int steps() const;
   int dofs() const;
   // The whole flow per mesh point (m/s, Pa), on every process: under MPI gathered when first asked
-  // for after a solve (every process must ask alike).
-  const std::vector<Vec3>& velocity() const;
-  const std::vector<double>& pressure() const;
+  // for after a solve (every process must ask alike; the whole mesh's fields on each, 32 bytes a point).
+  const std::vector<Vec3>& gathered_velocity() const;
+  const std::vector<double>& gathered_pressure() const;
   // This process's flow per point of its part (MeshPart's local numbering: owned, then ghosts),
   // m/s and Pa; nothing gathered.
   const std::vector<Vec3>& local_velocity() const;

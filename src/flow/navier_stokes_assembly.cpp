@@ -97,7 +97,7 @@ std::vector<double> NavierStokes::Impl::gather_points(const std::vector<double>&
 
 void NavierStokes::Impl::publish() const {
   // Every process's own points placed in a whole-size array, summed over the processes: the
-  // whole flow on each (a caller of velocity() need not know which process it is on; 32 bytes a
+  // whole flow on each (a caller of gathered_velocity() need not know which process it is on; 32 bytes a
   // point). The distributed post-processing does without (local_velocity()).
   if (published) return;
   published = true;
@@ -113,6 +113,109 @@ void NavierStokes::Impl::publish() const {
   for (size_t k = 0; k < u_mesh.size(); ++k) {
     u_mesh[k] = Vec3(all[kBlock * k], all[kBlock * k + 1], all[kBlock * k + 2]);
     p_mesh[k] = all[kBlock * k + 3];
+  }
+}
+
+namespace {
+
+// Newton's terms on cell (lane l of `cells`)'s system K and right-hand side F, at the advecting
+// velocity `advect` and pressure `p` (per local point), mass coefficient m; the stabilization's
+// own derivatives too when `stabilization_jacobian` (Linearization::full).
+void add_newton_terms(const CellSystems& cells, int l, const Tet& t4,
+                      const std::vector<Vec3>& advect, const std::vector<double>& p, double m,
+                      bool stabilization_jacobian, double K[16][16], double F[16]) {
+  const double V = cells.volume[l], tau_m = cells.tau_m[l], tau_c = cells.tau_c[l];
+  std::array<Vec3, 4> g;
+  double c[4];
+  for (int a = 0; a < 4; ++a) {
+    g[a] = Vec3(cells.g[a][0][l], cells.g[a][1][l], cells.g[a][2][l]);
+    c[a] = cells.c[a][l];
+  }
+  const Vec3 ubar(cells.ubar[0][l], cells.ubar[1][l], cells.ubar[2][l]);
+  const Vec3 hbar(cells.hbar[0][l], cells.hbar[1][l], cells.hbar[2][l]);
+  Eigen::Matrix3d G = Eigen::Matrix3d::Zero();
+  for (int a = 0; a < 4; ++a) G += g[a] * g[a].transpose();
+  // The element's convection is V/4 (ubar . grad) u in each row, ubar the mean of its corners'
+  // velocities: its derivative in u_b beyond the Picard part is V/16 grad u (every a, b), and
+  // Newton's right-hand side gains that part applied to the current flow, V/4 (grad u) ubar.
+  // The stabilization's terms are tau_m V c_a r (momentum, SUPG) and tau_m V g_a . r
+  // (continuity, PSPG), r = m u + (ubar . grad) u + grad p - h the element's strong residual,
+  // c_a = ubar . g_a: their derivatives in u_b through ubar (tau_m held; its own derivative
+  // below) are tau_m V/4 (g_a[j] r_i + c_a grad(i, j)) and tau_m V/4 (g_a . grad(:, j)),
+  // and Newton's right-hand side gains them applied to the current flow. (Without them Newton's
+  // iterations converged only linearly where the stabilization weighs: 0.7 a step on a carotid
+  // bifurcation at Re 300.)
+  Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();  // grad(i, j) = d u_i / d x_j
+  Vec3 grad_p = Vec3::Zero();
+  for (int a = 0; a < 4; ++a) {
+    grad += advect[t4[a]] * g[a].transpose();
+    grad_p += p[t4[a]] * g[a];
+  }
+  const Vec3 convection = grad * ubar;
+  const Vec3 r = m * ubar + convection + grad_p - hbar;
+  const double held = stabilization_jacobian ? tau_m : 0.0;
+  const Vec3 extra = V / 4.0 * convection;
+  // And the parameters' own derivatives (full): tau_m = (time_term + ubar.G ubar + ...)^-1/2
+  // gives d tau_m / d u_b = -tau_m^3 G ubar / 4, and, tau_c being 1 / (tau_m tr G),
+  // d tau_c / d u_b = tau_c tau_m^2 G ubar / 4: rank-one terms on the SUPG and PSPG rows (their
+  // residuals V c_a r and V g_a . r) and the LSIC rows (V g_a div u). (Held, Newton's last steps
+  // cut the residual 4-27-fold on a carotid bifurcation at Re 300.)
+  const Vec3 dtau =
+      stabilization_jacobian ? Vec3(-tau_m * tau_m * tau_m / 4.0 * (G * ubar)) : Vec3::Zero();
+  const double dtau_c_over_dtau = -tau_c / tau_m, divergence = grad.trace(),
+               along = 4.0 * dtau.dot(ubar);
+  for (int a = 0; a < 4; ++a) {
+    const Vec3 pspg = g[a].transpose() * grad;  // (g_a . grad(:, j))_j
+    Vec3 momentum_tau;                          // per row i, what multiplies d tau_m / d u_b
+    for (int i = 0; i < 3; ++i)
+      momentum_tau[i] = V * (c[a] * r[i] + dtau_c_over_dtau * g[a][i] * divergence);
+    const double continuity_tau = V * g[a].dot(r);
+    for (int b = 0; b < 4; ++b)
+      for (int j = 0; j < 3; ++j) {
+        for (int i = 0; i < 3; ++i)
+          K[4 * a + i][4 * b + j] += V / 16.0 * grad(i, j) +
+                                     held * V / 4.0 * (g[a][j] * r[i] + c[a] * grad(i, j)) +
+                                     momentum_tau[i] * dtau[j];
+        K[4 * a + 3][4 * b + j] += held * V / 4.0 * pspg[j] + continuity_tau * dtau[j];
+      }
+    for (int i = 0; i < 3; ++i)
+      F[4 * a + i] += extra[i] + held * V * c[a] * (r[i] + convection[i]) + momentum_tau[i] * along;
+    F[4 * a + 3] += held * V * g[a].dot(convection) + continuity_tau * along;
+  }
+}
+
+}  // namespace
+
+// The corners of the cells `cell[0..count)` (the last repeated in the lanes beyond): their points,
+// advecting velocity and BDF history.
+void NavierStokes::Impl::gather_corners(const int* cell, int count, const std::vector<Vec3>& advect,
+                                        const std::vector<Vec3>& history, CellCorners& corners) const {
+  for (int l = 0; l < kCellLanes; ++l) {
+    const Tet& t4 = tets[static_cast<size_t>(cell[std::min(l, count - 1)])];
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i) {
+        corners.x[a][i][l] = points[t4[a]][i];
+        corners.u[a][i][l] = advect[t4[a]][i];
+        corners.h[a][i][l] = history[t4[a]][i];
+      }
+  }
+}
+
+// The field split's entries of those cells' point pairs in rows [lo, hi), fetched into the cache
+// while the cells' systems are worked out (the scatter waited on them).
+void NavierStokes::Impl::prefetch_pairs(const int* cell, int count, int lo, int hi) const {
+  for (int l = 0; l < count; ++l) {
+    const size_t e = static_cast<size_t>(cell[l]);
+    for (int a = 0; a < 4; ++a) {
+      if (tets[e][a] < lo || tets[e][a] >= hi) continue;
+      for (int b = 0; b < 4; ++b) {
+        const SplitPairPlace to = pair_entries(tets[e][a], cell_slot(e, a, b));
+        __builtin_prefetch(to.velocity, 1);
+        __builtin_prefetch(to.velocity + 8, 1);
+        __builtin_prefetch(to.divergence, 1);
+        __builtin_prefetch(to.pressure, 1);
+      }
+    }
   }
 }
 
@@ -135,64 +238,6 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
   const int chunks = static_cast<int>(chunk_begin.size()) - 1;
   chunk_cfl.assign(static_cast<size_t>(chunks), 0.0);
   const CellParameters parameters{.mass = m, .dt = dt, .viscosity = nu};
-  // Newton's terms on cell (lane l of `cells`)'s system K and right-hand side F.
-  const auto add_newton_terms = [&](const CellSystems& cells, int l, const Tet& t4, double K[16][16], double F[16]) {
-    const double V = cells.volume[l], tau_m = cells.tau_m[l], tau_c = cells.tau_c[l];
-    std::array<Vec3, 4> g;
-    double c[4];
-    for (int a = 0; a < 4; ++a) {
-      g[a] = Vec3(cells.g[a][0][l], cells.g[a][1][l], cells.g[a][2][l]);
-      c[a] = cells.c[a][l];
-    }
-    const Vec3 ubar(cells.ubar[0][l], cells.ubar[1][l], cells.ubar[2][l]);
-    const Vec3 hbar(cells.hbar[0][l], cells.hbar[1][l], cells.hbar[2][l]);
-    Eigen::Matrix3d G = Eigen::Matrix3d::Zero();
-    for (int a = 0; a < 4; ++a) G += g[a] * g[a].transpose();
-    // The element's convection is V/4 (ubar . grad) u in each row, ubar the mean of its corners'
-    // velocities: its derivative in u_b beyond the Picard part is V/16 grad u (every a, b), and
-    // Newton's right-hand side gains that part applied to the current flow, V/4 (grad u) ubar.
-    // The stabilization's terms are tau_m V c_a r (momentum, SUPG) and tau_m V g_a . r
-    // (continuity, PSPG), r = m u + (ubar . grad) u + grad p - h the element's strong residual,
-    // c_a = ubar . g_a: their derivatives in u_b through ubar (tau_m held; its own derivative
-    // below) are tau_m V/4 (g_a[j] r_i + c_a grad(i, j)) and tau_m V/4 (g_a . grad(:, j)),
-    // and Newton's right-hand side gains them applied to the current flow. (Without them Newton's
-    // iterations converged only linearly where the stabilization weighs: 0.7 a step on a carotid
-    // bifurcation at Re 300.)
-    Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();  // grad(i, j) = d u_i / d x_j
-    Vec3 grad_p = Vec3::Zero();
-    for (int a = 0; a < 4; ++a) {
-      grad += advect[t4[a]] * g[a].transpose();
-      grad_p += p[t4[a]] * g[a];
-    }
-    const Vec3 convection = grad * ubar;
-    const Vec3 r = m * ubar + convection + grad_p - hbar;
-    const double held = stabilization_jacobian ? tau_m : 0.0;
-    const Vec3 extra = V / 4.0 * convection;
-    // And the parameters' own derivatives (full): tau_m = (time_term + ubar.G ubar + ...)^-1/2
-    // gives d tau_m / d u_b = -tau_m^3 G ubar / 4, and, tau_c being 1 / (tau_m tr G),
-    // d tau_c / d u_b = tau_c tau_m^2 G ubar / 4: rank-one terms on the SUPG and PSPG rows (their residuals
-    // V c_a r and V g_a . r) and the LSIC rows (V g_a div u). (Held, Newton's last steps cut
-    // the residual 4-27-fold on a carotid bifurcation at Re 300.)
-    const Vec3 dtau = stabilization_jacobian ? Vec3(-tau_m * tau_m * tau_m / 4.0 * (G * ubar)) : Vec3::Zero();
-    const double dtau_c_over_dtau = -tau_c / tau_m, divergence = grad.trace(), along = 4.0 * dtau.dot(ubar);
-    for (int a = 0; a < 4; ++a) {
-      const Vec3 pspg = g[a].transpose() * grad;  // (g_a . grad(:, j))_j
-      Vec3 momentum_tau;  // per row i, what multiplies d tau_m / d u_b
-      for (int i = 0; i < 3; ++i)
-        momentum_tau[i] = V * (c[a] * r[i] + dtau_c_over_dtau * g[a][i] * divergence);
-      const double continuity_tau = V * g[a].dot(r);
-      for (int b = 0; b < 4; ++b)
-        for (int j = 0; j < 3; ++j) {
-          for (int i = 0; i < 3; ++i)
-            K[4 * a + i][4 * b + j] += V / 16.0 * grad(i, j) + held * V / 4.0 * (g[a][j] * r[i] + c[a] * grad(i, j)) +
-                                       momentum_tau[i] * dtau[j];
-          K[4 * a + 3][4 * b + j] += held * V / 4.0 * pspg[j] + continuity_tau * dtau[j];
-        }
-      for (int i = 0; i < 3; ++i)
-        F[4 * a + i] += extra[i] + held * V * c[a] * (r[i] + convection[i]) + momentum_tau[i] * along;
-      F[4 * a + 3] += held * V * g[a].dot(convection) + continuity_tau * along;
-    }
-  };
   // Lane l of `cells`'s systems (cell e): into the matrix and right-hand side, moving known
   // Dirichlet values to the right-hand side and giving known rows only their diagonal. (cfl: the
   // chunk's largest cell CFL number so far, a local of its thread's: written to chunk_cfl once
@@ -217,7 +262,7 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
             for (int j = 0; j < 4; ++j) K[4 * a + i][4 * b + j] = cells.block[a][b][i][j][l];
             F[4 * a + i] = cells.rhs[a][i][l];
           }
-      add_newton_terms(cells, l, t4, K, F);
+      add_newton_terms(cells, l, t4, advect, p, m, stabilization_jacobian, K, F);
     }
     const auto block = [&](int a, int b, int i, int j) {
       if constexpr (kNewton) return K[4 * a + i][4 * b + j];
@@ -281,29 +326,8 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
   // them), then each cell added in turn.
   const auto add_cells = [&](const int* cell, int count, int lo, int hi, double& cfl) {
     CellCorners corners;
-    for (int l = 0; l < kCellLanes; ++l) {
-      const Tet& t4 = tets[static_cast<size_t>(cell[std::min(l, count - 1)])];
-      for (int a = 0; a < 4; ++a)
-        for (int i = 0; i < 3; ++i) {
-          corners.x[a][i][l] = points[t4[a]][i];
-          corners.u[a][i][l] = advect[t4[a]][i];
-          corners.h[a][i][l] = history[t4[a]][i];
-        }
-    }
-    if (values.split)
-      for (int l = 0; l < count; ++l) {
-        const size_t e = static_cast<size_t>(cell[l]);
-        for (int a = 0; a < 4; ++a) {
-          if (tets[e][a] < lo || tets[e][a] >= hi) continue;
-          for (int b = 0; b < 4; ++b) {
-            const SplitPairPlace to = pair_entries(tets[e][a], cell_slot(e, a, b));
-            __builtin_prefetch(to.velocity, 1);
-            __builtin_prefetch(to.velocity + 8, 1);
-            __builtin_prefetch(to.divergence, 1);
-            __builtin_prefetch(to.pressure, 1);
-          }
-        }
-      }
+    gather_corners(cell, count, advect, history, corners);
+    if (values.split) prefetch_pairs(cell, count, lo, hi);
     CellSystems systems;
     stabilized_cells(corners, parameters, systems);
     for (int l = 0; l < count; ++l)
@@ -326,27 +350,40 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
   if (chunks == 1) add_chunk(0);
   else arena->execute([&] { tbb::parallel_for(0, chunks, add_chunk); });
 
-  // The Schur complement at the open ends: there the velocity's divergence B^T q of a pressure q
-  // has a boundary part, q n dS, which the Laplacian above lacks (it leaves a constant pressure
-  // free, which the open ends fix); B D^-1 B^T's share of it, per point its (free components')
-  // area vector a squared over its momentum diagonal, |a|^2 / D.
-  if (values.schur_own) {
-    std::vector<Vec3> area(owned, Vec3::Zero());
-    for (const Boundary& b : boundaries) {
-      if (!is_natural(b.condition.type)) continue;
-      for (const BoundaryFace& f : b.faces)
-        for (int a = 0; a < 3; ++a)
-          if (owns(f.v[a])) area[f.v[a]] += f.area / 3.0 * f.normal;
-    }
-    for (int a = 0; a < owned; ++a) {
-      double squared = 0.0;
-      for (int i = 0; i < 3; ++i) squared += fixed[kBlock * a + i] ? 0.0 : area[a][i] * area[a][i];
-      if (squared > 0.0 && !fixed[kBlock * a + 3] && momentum_share[a] > 0.0)
-        *entry(a, 3, slot(a, a)).schur += squared / momentum_share[a];
-    }
+  if (values.schur_own) add_open_end_schur(momentum_share);
+  add_open_ends(advect, newton);
+  set_dirichlet_rows(diagonal);
+  solver->end_assembly();
+  values = MatrixValues{};
+  if (!resistive.empty()) {  // the resistive ends' implicit part, as update_resistance left it
+    std::vector<double> coefficients;
+    for (int k : resistive) coefficients.push_back(resistance_coefficient[k]);
+    solver->set_low_rank_coefficients(coefficients);
   }
+}
 
-  // Natural boundaries: backflow stabilization and the resistance's traction.
+// The Schur complement at the open ends: there the velocity's divergence B^T q of a pressure q
+// has a boundary part, q n dS, which the Laplacian above lacks (it leaves a constant pressure
+// free, which the open ends fix); B D^-1 B^T's share of it, per point its (free components')
+// area vector a squared over its momentum diagonal, |a|^2 / D.
+void NavierStokes::Impl::add_open_end_schur(const std::vector<double>& momentum_share) {
+  std::vector<Vec3> area(owned, Vec3::Zero());
+  for (const Boundary& b : boundaries) {
+    if (!is_natural(b.condition.type)) continue;
+    for (const BoundaryFace& f : b.faces)
+      for (int a = 0; a < 3; ++a)
+        if (owns(f.v[a])) area[f.v[a]] += f.area / 3.0 * f.normal;
+  }
+  for (int a = 0; a < owned; ++a) {
+    double squared = 0.0;
+    for (int i = 0; i < 3; ++i) squared += fixed[kBlock * a + i] ? 0.0 : area[a][i] * area[a][i];
+    if (squared > 0.0 && !fixed[kBlock * a + 3] && momentum_share[a] > 0.0)
+      *entry(a, 3, slot(a, a)).schur += squared / momentum_share[a];
+  }
+}
+
+// Natural boundaries: backflow stabilization and the resistance's traction.
+void NavierStokes::Impl::add_open_ends(const std::vector<Vec3>& advect, bool newton) {
   for (size_t k = 0; k < boundaries.size(); ++k) {
     const Boundary& b = boundaries[k];
     if (!is_natural(b.condition.type)) continue;
@@ -363,7 +400,8 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
         // converged linearly wherever a jet reached an open end: 32 iterations against 12 on the
         // nozzle of NavierStokes.NewtonSettlesSuperlinearlyWhereFlowEntersAnOpenEnd).
         Vec3 mass_u = Vec3::Zero();  // (M_f u)_a
-        for (int bb = 0; bb < 3; ++bb) mass_u += f.area / 12.0 * (a == bb ? 2.0 : 1.0) * advect[f.v[bb]];
+        for (int bb = 0; bb < 3; ++bb)
+          mass_u += f.area / 12.0 * (a == bb ? 2.0 : 1.0) * advect[f.v[bb]];
         const bool newton_backflow = newton && beta > 0.0;
         for (int i = 0; i < 3; ++i) {
           const int row = kBlock * na + i;
@@ -372,12 +410,15 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
           if (beta == 0.0) continue;
           for (int bb = 0; bb < 3; ++bb) {
             const int nb = f.v[bb];
-            if (!fixed[kBlock * nb + i]) entry(na, i, slot(na, nb))[i] += beta * f.area / 12.0 * (a == bb ? 2.0 : 1.0);
+            if (!fixed[kBlock * nb + i])
+              entry(na, i, slot(na, nb))[i] += beta * f.area / 12.0 * (a == bb ? 2.0 : 1.0);
             if (!newton_backflow) continue;
             for (int j = 0; j < 3; ++j) {
               const double derivative = mass_u[i] * -0.5 * fc.backflow * f.normal[j] / 3.0;
-              if (fixed[kBlock * nb + j]) rhs[row] -= derivative * dirichlet[kBlock * nb + j];
-              else entry(na, i, slot(na, nb))[j] += derivative;
+              if (fixed[kBlock * nb + j])
+                rhs[row] -= derivative * dirichlet[kBlock * nb + j];
+              else
+                entry(na, i, slot(na, nb))[j] += derivative;
             }
           }
           if (newton_backflow) rhs[row] += beta * mass_u[i];
@@ -385,8 +426,10 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
       }
     }
   }
+}
 
-  // Dirichlet rows: the diagonal the elements gave them, times the known value.
+// Dirichlet rows: the diagonal the elements gave them, times the known value.
+void NavierStokes::Impl::set_dirichlet_rows(const std::vector<double>& diagonal) {
   for (int a = 0; a < owned; ++a)
     for (int i = 0; i < kBlock; ++i) {
       const int row = kBlock * a + i;
@@ -397,13 +440,6 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
       diagonal_place[i] = d;
       rhs[row] = d * dirichlet[row];
     }
-  solver->end_assembly();
-  values = MatrixValues{};
-  if (!resistive.empty()) {  // the resistive ends' implicit part, as update_resistance left it
-    std::vector<double> coefficients;
-    for (int k : resistive) coefficients.push_back(resistance_coefficient[k]);
-    solver->set_low_rank_coefficients(coefficients);
-  }
 }
 
 }  // namespace vesselmesh::flow

@@ -129,7 +129,7 @@ struct NavierStokes::Impl {
   std::vector<char> fixed;  // per local dof: Dirichlet
   std::unique_ptr<LinearSolver> solver;
 
-  // Every process's copy of the whole flow in the mesh's numbering (velocity(), pressure()),
+  // Every process's copy of the whole flow in the mesh's numbering (gathered_velocity(), gathered_pressure()),
   // gathered when first asked for after a solve (`published` false until then).
   mutable std::vector<Vec3> u_mesh;
   mutable std::vector<double> p_mesh;  // Pa
@@ -202,6 +202,16 @@ struct NavierStokes::Impl {
   enum class Linearization { picard, convection, full };
   void assemble(const std::vector<Vec3>& advect, const std::vector<Vec3>& history, double mass_coefficient,
                 double dt, Linearization linearization = Linearization::picard);
+  // assemble()'s parts after the cells: the Schur complement's preconditioning matrix at the open
+  // ends (from each owned point's share of its cells' momentum diagonal), the open ends' backflow
+  // stabilization and resistance traction, and the Dirichlet rows (the diagonal the cells gave them).
+  void add_open_end_schur(const std::vector<double>& momentum_share);
+  void add_open_ends(const std::vector<Vec3>& advect, bool newton);
+  void set_dirichlet_rows(const std::vector<double>& diagonal);
+  // assemble()'s cells, kCellLanes at a time: their corners, and their point pairs' entries prefetched.
+  void gather_corners(const int* cell, int count, const std::vector<Vec3>& advect, const std::vector<Vec3>& history,
+                      CellCorners& corners) const;
+  void prefetch_pairs(const int* cell, int count, int lo, int hi) const;
   // Solves the assembled system from an initial guess: `guess`'s velocity with the current
   // pressure (null: the current flow). `direct_fallback`: when the iterative solver does not
   // converge and the system has at most NavierStokes::kDirectFallbackUnknowns unknowns, solve it

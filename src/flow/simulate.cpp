@@ -286,56 +286,127 @@ std::map<std::string, std::string> end_logs(const std::string& log, const std::v
   return out;
 }
 
-SimulationSummary simulate(const FlowCase& input_case, const std::string& output_dir,
-                           const std::string& extra_petsc_options, const Reporter& all_reporter, bool restart) {
-  const auto start = Clock::now();
-  // Under mpirun the first process reads the mesh and sends every process its part (the others
-  // never read it); each assembles its own rows, computes the wall shear stress of its part of the
-  // wall and writes its pieces of the results (pieces/, joined by .pvtu / .pvtp files the first
-  // writes). On one process the results are whole files, the mesh as read.
-  const int ranks = parallel::process_count(), rank = parallel::process_rank();
-  const bool writer = rank == 0, pieces = ranks > 1;
-  const Reporter& reporter = writer ? all_reporter : silent_reporter();
-  FlowCase fc = input_case;
-  if (!extra_petsc_options.empty()) fc.petsc_options += " " + extra_petsc_options;
+namespace {
+
+// One run of simulate(), in the steps it takes (simulate() calls them in order): the mesh read and
+// distributed, the partition described, the logs opened, a checkpoint restored, then the steady
+// solve or the time steps, each saved, checkpointed and summarized. Under mpirun the first process
+// reads the mesh and sends every process its part (the others never read it); each assembles its
+// own rows, computes the wall shear stress of its part of the wall and writes its pieces of the
+// results (pieces/, joined by .pvtu / .pvtp files the first writes). On one process the results
+// are whole files, the mesh as read. Every member is called by every process alike.
+class Run {
+ public:
+  Run(const FlowCase& input_case, const std::string& output_dir,
+      const std::string& extra_petsc_options, const Reporter& all_reporter, bool restart)
+      : start_(Clock::now()),
+        output_dir_(output_dir),
+        restart_(restart),
+        ranks_(parallel::process_count()),
+        rank_(parallel::process_rank()),
+        writer_(rank_ == 0),
+        pieces_(ranks_ > 1),
+        reporter_(writer_ ? all_reporter : silent_reporter()),
+        fc_(input_case),
+        checkpoint_path_(output_dir + "/checkpoint.bin") {
+    if (!extra_petsc_options.empty()) fc_.petsc_options += " " + extra_petsc_options;
+  }
+
+  void read_and_distribute();
+  void describe_partition();
+  void open_logs();
+  void restore_checkpoint();
+  // The steady solve or the time steps to the end (or to a stop signal), the summary written.
+  SimulationSummary go();
+
+ private:
+  std::vector<Vec3> wall_stress() const;
+  void gather_memory();
+  void log_line(const std::string& line);
+  void log_step(const StepReport& r);
+  void write_logs() const;
+  void write_summary() const;
+  std::string write_result(const std::string& name, io::VtkFormat format,
+                           const std::vector<Field>& fields,
+                           const std::function<void(const std::string&)>& write_piece) const;
+  void write_indices();
+  void save(double time, const std::vector<Vec3>* computed, bool with_fluid);
+  void write_checkpoint_now();
+  void finish(const char* status);
+  void run_steady();
+  bool run_time_steps();  // false: stopped by a signal (the summary written)
+
+  const Clock::time_point start_;
+  Clock::time_point solve_start_;
+  const std::string output_dir_;
+  const bool restart_;
+  const int ranks_, rank_;
+  const bool writer_, pieces_;
+  const Reporter& reporter_;
+  FlowCase fc_;
+  TetMesh mesh_;
+  uint64_t fingerprint_ = 0;  // of the mesh and the time step, the first process's (checkpoints)
+  int mesh_points_ = 0;
+  // The results this process writes: the whole mesh on one process; under MPI its piece of the
+  // fluid (its cells whose least point it owns) and of the wall (its wall triangles).
+  WallPiece wall_;
+  TetMesh fluid_piece_;
+  std::vector<int> fluid_local_;  // per point of the fluid piece, its local point
+  std::unique_ptr<NavierStokes> ns_;
+  std::string units_;
+  SimulationSummary summary_;
+  std::vector<std::pair<double, std::string>> fluid_files_, wall_files_;
+  std::string log_, log_header_;
+  std::vector<std::string> end_tags_;
+  // ends/TAG.csv's texts, grown a row a step from log.csv's (end_logs of its header and the new
+  // line: one formatting for both), made whole from the log at a restart.
+  std::map<std::string, std::string> end_texts_;
+  // Hemodynamic indices over the last period (the whole run without one), from every step, at
+  // the wall points this process writes.
+  post::WssIndexAccumulator indices_;
+  double window_start_ = 0.0;
+  const std::string checkpoint_path_;  // the state to go on from, in the mesh's numbering
+  int first_step_ = 0;
+};
+
+void Run::read_and_distribute() {
   std::vector<std::string> wall_names;
-  for (const BoundaryCondition& b : fc.boundaries)
+  for (const BoundaryCondition& b : fc_.boundaries)
     if (b.type == BoundaryType::wall) wall_names.push_back(b.tag);
-  TetMesh mesh;
-  uint64_t fingerprint = 0;  // of the mesh and the time step, the first process's (checkpoints)
   std::exception_ptr unread;
-  if (writer) {
+  if (writer_) {
     try {
-      mesh = read_mesh(fc);
-      reporter.info(fmt::format("mesh {}: {} points, {} tetrahedra, {} prisms, {} boundary triangles", fc.mesh,
-                                mesh.num_points(), mesh.num_tets(), mesh.num_prisms(), mesh.boundary.size()));
-      fingerprint = run_fingerprint(mesh, fc.dt);
+      mesh_ = read_mesh(fc_);
+      reporter_.info(fmt::format(
+          "mesh {}: {} points, {} tetrahedra, {} prisms, {} boundary triangles", fc_.mesh,
+          mesh_.num_points(), mesh_.num_tets(), mesh_.num_prisms(), mesh_.boundary.size()));
+      fingerprint_ = run_fingerprint(mesh_, fc_.dt);
     } catch (...) {
       unread = std::current_exception();
     }
   }
-  MeshPart part =
-      distribute_mesh(writer ? &mesh : nullptr, fc.mesh, unread, pieces ? wall_names : std::vector<std::string>{});
-  if (pieces) mesh = TetMesh{};  // the parts hold it now
-  const double distribution_memory = peak_memory_mb();  // the first process's: the whole mesh read and split
-  if (pieces)
-    reporter.info(fmt::format("mesh read and split by the first process (peak memory {:.0f} MB), a part sent to "
-                              "each of the {} others",
-                              distribution_memory, ranks - 1));
-  reporter.info(fmt::format("units: mesh in {}, scaled by {:g} to metres; velocity m/s, pressure Pa, wss Pa",
-                            fc.length_unit, fc.length_scale));
-  const int mesh_tetrahedra = part.mesh_tetrahedra, mesh_points = part.total_points;
+  MeshPart part = distribute_mesh(writer_ ? &mesh_ : nullptr, fc_.mesh, unread,
+                                  pieces_ ? wall_names : std::vector<std::string>{});
+  if (pieces_) mesh_ = TetMesh{};  // the parts hold it now
+  summary_.distribution_memory_mb =
+      peak_memory_mb();  // the first process's: the whole mesh read and split
+  if (pieces_)
+    reporter_.info(fmt::format(
+        "mesh read and split by the first process (peak memory {:.0f} MB), a part sent to "
+        "each of the {} others",
+        summary_.distribution_memory_mb, ranks_ - 1));
+  reporter_.info(
+      fmt::format("units: mesh in {}, scaled by {:g} to metres; velocity m/s, pressure Pa, wss Pa",
+                  fc_.length_unit, fc_.length_scale));
+  summary_.tetrahedra = part.mesh_tetrahedra;
+  summary_.points = mesh_points_ = part.total_points;
   std::vector<int> wall_tags;
   for (const auto& [tag, name] : part.tag_names)
-    if (std::find(wall_names.begin(), wall_names.end(), name) != wall_names.end()) wall_tags.push_back(tag);
-  // The results this process writes: the whole mesh on one process; under MPI its piece of the
-  // fluid (its cells whose least point it owns) and of the wall (its wall triangles).
-  WallPiece wall;
-  TetMesh fluid_piece;
-  std::vector<int> fluid_local;  // per point of the fluid piece, its local point
-  if (pieces) {
-    wall = distributed_wall(part, wall_tags, fc);
-    fluid_piece.tag_names = part.tag_names;
+    if (std::find(wall_names.begin(), wall_names.end(), name) != wall_names.end())
+      wall_tags.push_back(tag);
+  if (pieces_) {
+    wall_ = distributed_wall(part, wall_tags, fc_);
+    fluid_piece_.tag_names = part.tag_names;
     std::vector<int> at(part.points.size(), -1);
     for (const Tet& t4 : part.tets) {
       int least = t4[0];
@@ -345,401 +416,463 @@ SimulationSummary simulate(const FlowCase& input_case, const std::string& output
       Tet cell = t4;
       for (int& a : cell) {
         if (at[a] < 0) {
-          at[a] = static_cast<int>(fluid_local.size());
-          fluid_local.push_back(a);
-          fluid_piece.points.push_back(part.points[a]);
+          at[a] = static_cast<int>(fluid_local_.size());
+          fluid_local_.push_back(a);
+          fluid_piece_.points.push_back(part.points[a]);
         }
         a = at[a];
       }
-      fluid_piece.tets.push_back(cell);
+      fluid_piece_.tets.push_back(cell);
     }
   } else {
-    wall = whole_wall(mesh, wall_tags, fc);
+    wall_ = whole_wall(mesh_, wall_tags, fc_);
   }
-  NavierStokes ns(std::move(part), fc, reporter);
-  const int wall_points = pieces ? static_cast<int>(parallel::sum_all({static_cast<double>(wall.owned_points)})[0])
-                                 : wall.mesh.num_points();
-  const int fallbacks = pieces ? static_cast<int>(parallel::sum_all({static_cast<double>(wall.owned_fallbacks)})[0])
-                               : wall.shear->face_fallbacks();
-  reporter.info(fmt::format("wall shear stress: {} method on {} wall points{}", fc.wss_method, wall_points,
-                            fallbacks > 0 ? fmt::format(" ({} by their faces: too few neighbours for a quadratic)",
-                                                        fallbacks)
-                                          : ""));
-  // The wall shear stress at the wall points this process writes (Pa).
-  const auto wall_stress = [&]() {
-    return wall.stress(pieces ? ns.local_velocity() : ns.velocity(), fc.viscosity);
-  };
+  ns_ = std::make_unique<NavierStokes>(std::move(part), fc_, reporter_);
+  const int wall_points =
+      pieces_ ? static_cast<int>(parallel::sum_all({static_cast<double>(wall_.owned_points)})[0])
+              : wall_.mesh.num_points();
+  const int fallbacks =
+      pieces_ ? static_cast<int>(parallel::sum_all({static_cast<double>(wall_.owned_fallbacks)})[0])
+              : wall_.shear->face_fallbacks();
+  reporter_.info(fmt::format(
+      "wall shear stress: {} method on {} wall points{}", fc_.wss_method, wall_points,
+      fallbacks > 0
+          ? fmt::format(" ({} by their faces: too few neighbours for a quadratic)", fallbacks)
+          : ""));
+}
 
-  if (writer) std::filesystem::create_directories(output_dir);
-  const PartitionReport partition = ns.partition();
-  reporter.info(fmt::format("assembly: {} thread{} a process", partition.threads, partition.threads > 1 ? "s" : ""));
-  if (ranks > 1) {
-    const auto [least, most] = std::minmax_element(partition.owned_points.begin(), partition.owned_points.end());
+// The wall shear stress at the wall points this process writes (Pa).
+std::vector<Vec3> Run::wall_stress() const {
+  return wall_.stress(pieces_ ? ns_->local_velocity() : ns_->gathered_velocity(), fc_.viscosity);
+}
+
+void Run::describe_partition() {
+  if (writer_) std::filesystem::create_directories(output_dir_);
+  const PartitionReport partition = ns_->partition();
+  reporter_.info(fmt::format("assembly: {} thread{} a process", partition.threads,
+                             partition.threads > 1 ? "s" : ""));
+  if (ranks_ > 1) {
+    const auto [least, most] =
+        std::minmax_element(partition.owned_points.begin(), partition.owned_points.end());
     const auto [least_ghosts, most_ghosts] =
         std::minmax_element(partition.ghost_points.begin(), partition.ghost_points.end());
-    const double mean = static_cast<double>(mesh_points) / ranks;
-    reporter.info(fmt::format("{} MPI processes (points split by PT-Scotch): {} to {} unknowns each (largest / mean "
-                              "{:.3f}), {} to {} ghost points, up to {} neighbours",
-                              ranks, 4 * *least, 4 * *most, *most / mean, *least_ghosts, *most_ghosts,
-                              *std::max_element(partition.neighbours.begin(), partition.neighbours.end())));
+    const double mean = static_cast<double>(mesh_points_) / ranks_;
+    reporter_.info(fmt::format(
+        "{} MPI processes (points split by PT-Scotch): {} to {} unknowns each (largest / mean "
+        "{:.3f}), {} to {} ghost points, up to {} neighbours",
+        ranks_, 4 * *least, 4 * *most, *most / mean, *least_ghosts, *most_ghosts,
+        *std::max_element(partition.neighbours.begin(), partition.neighbours.end())));
   }
-  const std::string units = fmt::format("points in {} (x {:g} m), velocity m/s, pressure Pa, wss Pa, time s",
-                                        fc.length_unit, fc.length_scale);
-  SimulationSummary summary;
-  summary.points = mesh_points;
-  summary.tetrahedra = mesh_tetrahedra;
-  summary.distribution_memory_mb = distribution_memory;
-  summary.dofs = ns.dofs();
-  summary.ranks = ranks;
-  summary.partition = partition;
-  // Every process's peak resident memory (MB), gathered (every process calls it).
-  const auto gather_memory = [&]() {
-    summary.peak_memory_mb = parallel::gather_all(peak_memory_mb());
-    summary.library_memory_mb = parallel::gather_all(file_memory_mb());
-    summary.own_memory_mb.resize(summary.peak_memory_mb.size());
-    for (size_t r = 0; r < summary.own_memory_mb.size(); ++r)
-      summary.own_memory_mb[r] = summary.peak_memory_mb[r] - summary.library_memory_mb[r];
-  };
-  summary.length_scale = fc.length_scale;
-  summary.setup_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  std::vector<std::pair<double, std::string>> fluid_files, wall_files;
+  units_ = fmt::format("points in {} (x {:g} m), velocity m/s, pressure Pa, wss Pa, time s",
+                       fc_.length_unit, fc_.length_scale);
+  summary_.dofs = ns_->dofs();
+  summary_.ranks = ranks_;
+  summary_.partition = partition;
+  summary_.length_scale = fc_.length_scale;
+  summary_.setup_seconds = std::chrono::duration<double>(Clock::now() - start_).count();
+}
 
-  std::string log = "step,time_s";
-  for (const BoundaryCondition& b : fc.boundaries) {
-    log += fmt::format(",{0}_flux_m3_s,{0}_mean_pressure_Pa", b.tag);
-    if (b.type == BoundaryType::rcr) log += fmt::format(",{}_capacitor_pressure_Pa", b.tag);
+// Every process's peak resident memory (MB), gathered (every process calls it).
+void Run::gather_memory() {
+  summary_.peak_memory_mb = parallel::gather_all(peak_memory_mb());
+  summary_.library_memory_mb = parallel::gather_all(file_memory_mb());
+  summary_.own_memory_mb.resize(summary_.peak_memory_mb.size());
+  for (size_t r = 0; r < summary_.own_memory_mb.size(); ++r)
+    summary_.own_memory_mb[r] = summary_.peak_memory_mb[r] - summary_.library_memory_mb[r];
+}
+
+void Run::open_logs() {
+  log_ = "step,time_s";
+  for (const BoundaryCondition& b : fc_.boundaries) {
+    log_ += fmt::format(",{0}_flux_m3_s,{0}_mean_pressure_Pa", b.tag);
+    if (b.type == BoundaryType::rcr) log_ += fmt::format(",{}_capacitor_pressure_Pa", b.tag);
   }
-  log += ",linear_iterations,max_cfl,assembly_seconds,solve_seconds,seconds\n";
-  const std::string log_header = log;
-  std::vector<std::string> end_tags;
-  for (const BoundaryCondition& b : fc.boundaries)
-    if (b.type != BoundaryType::wall) end_tags.push_back(b.tag);
-  // ends/TAG.csv's texts, grown a row a step from log.csv's (end_logs of its header and the new
-  // line: one formatting for both), made whole from the log at a restart.
-  std::map<std::string, std::string> end_texts = end_logs(log_header, end_tags);
-  const auto log_line = [&](const std::string& line) {
-    log += line;
-    for (const auto& [tag, text] : end_logs(log_header + line, end_tags)) end_texts[tag] += text.substr(text.find('\n') + 1);
-  };
-  // log.csv and ends/TAG.csv (the writing process only).
-  const auto write_logs = [&]() {
-    if (!writer) return;
-    io::write_text(output_dir + "/log.csv", log);
-    std::filesystem::create_directories(output_dir + "/ends");
-    for (const auto& [tag, text] : end_texts) io::write_text(output_dir + "/ends/" + tag + ".csv", text);
-  };
+  log_ += ",linear_iterations,max_cfl,assembly_seconds,solve_seconds,seconds\n";
+  log_header_ = log_;
+  for (const BoundaryCondition& b : fc_.boundaries)
+    if (b.type != BoundaryType::wall) end_tags_.push_back(b.tag);
+  end_texts_ = end_logs(log_header_, end_tags_);
+  if (pieces_ && writer_) std::filesystem::create_directories(output_dir_ + "/pieces");
+  window_start_ = fc_.period > 0.0 && fc_.period < fc_.end ? fc_.end - fc_.period : 0.0;
+}
 
-  const auto write_summary = [&]() {
-    if (!writer) return;
-    nlohmann::ordered_json j;
-    j["status"] = summary.status;
-    if (summary.signal != 0) j["signal"] = summary.signal;
-    j["case"] = fc.path;
-    j["mesh"] = fc.mesh;
-    j["units"] = {{"points", fc.length_unit}, {"length_scale_m", fc.length_scale}, {"velocity", "m/s"},
-                  {"pressure", "Pa"}, {"wss", "Pa"}, {"time", "s"}, {"flux", "m3/s"}};
-    j["points"] = summary.points;
-    j["tetrahedra"] = summary.tetrahedra;
-    j["dofs"] = summary.dofs;
-    j["ranks"] = ranks;
-    nlohmann::ordered_json parts;
-    parts["owned_unknowns"] = nlohmann::ordered_json::array();
-    for (int points : summary.partition.owned_points) parts["owned_unknowns"].push_back(4 * points);
-    parts["ghost_points"] = summary.partition.ghost_points;
-    parts["neighbours"] = summary.partition.neighbours;
-    j["partition"] = parts;
-    j["assembly_threads"] = summary.partition.threads;
-    if (!summary.peak_memory_mb.empty()) {
-      j["peak_memory_mb"] = summary.peak_memory_mb;
-      j["library_memory_mb"] = summary.library_memory_mb;
-      j["peak_own_memory_mb"] = summary.own_memory_mb;
-    }
-    j["distribution_peak_memory_mb"] = summary.distribution_memory_mb;
-    if (!summary.ends.empty()) {
-      nlohmann::ordered_json ends = nlohmann::ordered_json::array();
-      for (size_t k = 0; k < summary.ends.size(); ++k) {
-        const BoundaryFlow& f = summary.ends[k];
-        nlohmann::ordered_json e = {{"tag", f.tag}, {"type", to_string(fc.boundaries[k].type)},
-                                    {"flux_m3_s", f.flux}, {"mean_pressure_Pa", f.mean_pressure}};
-        if (fc.boundaries[k].type == BoundaryType::rcr) e["capacitor_pressure_Pa"] = f.capacitor_pressure;
-        ends.push_back(e);
-      }
-      j["ends"] = ends;  // at the last step
-    }
-    j["steady"] = fc.steady;
-    if (fc.steady && summary.steady_residual >= 0.0) j["steady_residual"] = summary.steady_residual;
-    if (fc.steady) {
-      j["steady_method"] = fc.steady_method;
-      j["steady_history"] = history_json(ns.steady_history());
-    }
-    j["wss_method"] = fc.wss_method;
-    if (!fc.steady) j["initial"] = fc.stokes_start ? "stokes" : "rest";
-    if (fc.period > 0.0) j["period"] = fc.period;
-    if (summary.indices_end > summary.indices_start)
-      j["indices"] = {{"file", summary.indices_file}, {"start_s", summary.indices_start}, {"end_s", summary.indices_end},
-                      {"units", {{"tawss", "Pa"}, {"osi", "1"}, {"rrt", "1/Pa"}, {"twssg", "Pa/s"}}}};
-    j["steps"] = summary.steps;
-    j["saved"] = summary.saved;
-    j["linear_iterations"] = summary.linear_iterations;
-    j["setup_seconds"] = summary.setup_seconds;
-    j["seconds"] = summary.seconds;
-    j["seconds_per_step"] = summary.seconds_per_step;
-    j["seconds_per_step_per_million_dofs"] = summary.per_million_dofs(summary.seconds_per_step);
-    if (!fc.steady) {
-      j["initial_state_seconds"] = summary.initial_seconds;
-      j["first_step_seconds"] = summary.first_step_seconds;
-      j["settled_steps"] = summary.settled_steps;
-      j["settled_step_seconds"] = summary.settled_step_seconds;
-      j["settled_seconds_per_step_per_million_dofs"] = summary.per_million_dofs(summary.settled_step_seconds);
-    }
-    j["solver"] = summary.solver;
-    j["petsc_options"] = fc.petsc_options;
-    io::write_text(output_dir + "/summary.json", j.dump(2) + "\n");
-  };
+void Run::log_line(const std::string& line) {
+  log_ += line;
+  for (const auto& [tag, text] : end_logs(log_header_ + line, end_tags_))
+    end_texts_[tag] += text.substr(text.find('\n') + 1);
+}
 
-  // A result file: whole on one process (NAME.vtu / NAME.vtp); under MPI each process writes its
-  // piece (pieces/NAME_RANK.vtu) and, once all have, the first the .pvtu / .pvtp that joins them.
-  // `write_piece(path)` writes this process's; `fields` describe its point data. Returns the name.
-  if (pieces && writer) std::filesystem::create_directories(output_dir + "/pieces");
-  const auto write_result = [&](const std::string& name, io::VtkFormat format, const std::vector<Field>& fields,
-                                const std::function<void(const std::string&)>& write_piece) {
-    const std::string ext = format == io::VtkFormat::vtu ? "vtu" : "vtp";
-    if (!pieces) {
-      write_piece(output_dir + "/" + name + "." + ext);
-      return name + "." + ext;
-    }
-    write_piece(fmt::format("{}/pieces/{}_{}.{}", output_dir, name, rank, ext));
-    parallel::any_process(false);  // every piece written
-    if (writer) {
-      std::vector<std::string> sources;
-      for (int r = 0; r < ranks; ++r) sources.push_back(fmt::format("pieces/{}_{}.{}", name, r, ext));
-      io::write_parallel_file(output_dir + "/" + name + ".p" + ext, format, sources, fields);
-    }
-    return name + ".p" + ext;
-  };
+// log.csv and ends/TAG.csv (the writing process only).
+void Run::write_logs() const {
+  if (!writer_) return;
+  io::write_text(output_dir_ + "/log.csv", log_);
+  std::filesystem::create_directories(output_dir_ + "/ends");
+  for (const auto& [tag, text] : end_texts_)
+    io::write_text(output_dir_ + "/ends/" + tag + ".csv", text);
+}
 
-  // Hemodynamic indices over the last period (the whole run without one), from every step, at
-  // the wall points this process writes.
-  post::WssIndexAccumulator indices;
-  const double window_start = fc.period > 0.0 && fc.period < fc.end ? fc.end - fc.period : 0.0;
-  const auto write_indices = [&]() {
-    if (indices.samples() < 2) return;
-    const post::WssIndices r = indices.result();
-    const std::string file = write_result(
-        "indices", io::VtkFormat::vtp,
-        {Field::scalar("tawss", {}), Field::scalar("osi", {}), Field::scalar("rrt", {}), Field::scalar("twssg", {})},
-        [&](const std::string& path) { post::write_indices(path, wall.mesh, r); });
-    summary.indices_start = r.start;
-    summary.indices_end = r.end;
-    summary.indices_file = file;
-    reporter.info(fmt::format("{}: tawss (Pa), osi, rrt (1/Pa), twssg (Pa/s) over t = {:g} to {:g} s, {} samples", file,
-                              r.start, r.end, r.samples));
-  };
+void Run::write_summary() const {
+  if (!writer_) return;
+  nlohmann::ordered_json j;
+  j["status"] = summary_.status;
+  if (summary_.signal != 0) j["signal"] = summary_.signal;
+  j["case"] = fc_.path;
+  j["mesh"] = fc_.mesh;
+  j["units"] = {{"points", fc_.length_unit},
+                {"length_scale_m", fc_.length_scale},
+                {"velocity", "m/s"},
+                {"pressure", "Pa"},
+                {"wss", "Pa"},
+                {"time", "s"},
+                {"flux", "m3/s"}};
+  j["points"] = summary_.points;
+  j["tetrahedra"] = summary_.tetrahedra;
+  j["dofs"] = summary_.dofs;
+  j["ranks"] = ranks_;
+  nlohmann::ordered_json parts;
+  parts["owned_unknowns"] = nlohmann::ordered_json::array();
+  for (int points : summary_.partition.owned_points) parts["owned_unknowns"].push_back(4 * points);
+  parts["ghost_points"] = summary_.partition.ghost_points;
+  parts["neighbours"] = summary_.partition.neighbours;
+  j["partition"] = parts;
+  j["assembly_threads"] = summary_.partition.threads;
+  if (!summary_.peak_memory_mb.empty()) {
+    j["peak_memory_mb"] = summary_.peak_memory_mb;
+    j["library_memory_mb"] = summary_.library_memory_mb;
+    j["peak_own_memory_mb"] = summary_.own_memory_mb;
+  }
+  j["distribution_peak_memory_mb"] = summary_.distribution_memory_mb;
+  if (!summary_.ends.empty()) {
+    nlohmann::ordered_json ends = nlohmann::ordered_json::array();
+    for (size_t k = 0; k < summary_.ends.size(); ++k) {
+      const BoundaryFlow& f = summary_.ends[k];
+      nlohmann::ordered_json e = {{"tag", f.tag},
+                                  {"type", to_string(fc_.boundaries[k].type)},
+                                  {"flux_m3_s", f.flux},
+                                  {"mean_pressure_Pa", f.mean_pressure}};
+      if (fc_.boundaries[k].type == BoundaryType::rcr)
+        e["capacitor_pressure_Pa"] = f.capacitor_pressure;
+      ends.push_back(e);
+    }
+    j["ends"] = ends;  // at the last step
+  }
+  j["steady"] = fc_.steady;
+  if (fc_.steady && summary_.steady_residual >= 0.0)
+    j["steady_residual"] = summary_.steady_residual;
+  if (fc_.steady) {
+    j["steady_method"] = fc_.steady_method;
+    j["steady_history"] = history_json(ns_->steady_history());
+  }
+  j["wss_method"] = fc_.wss_method;
+  if (!fc_.steady) j["initial"] = fc_.stokes_start ? "stokes" : "rest";
+  if (fc_.period > 0.0) j["period"] = fc_.period;
+  if (summary_.indices_end > summary_.indices_start)
+    j["indices"] = {{"file", summary_.indices_file},
+                    {"start_s", summary_.indices_start},
+                    {"end_s", summary_.indices_end},
+                    {"units", {{"tawss", "Pa"}, {"osi", "1"}, {"rrt", "1/Pa"}, {"twssg", "Pa/s"}}}};
+  j["steps"] = summary_.steps;
+  j["saved"] = summary_.saved;
+  j["linear_iterations"] = summary_.linear_iterations;
+  j["setup_seconds"] = summary_.setup_seconds;
+  j["seconds"] = summary_.seconds;
+  j["seconds_per_step"] = summary_.seconds_per_step;
+  j["seconds_per_step_per_million_dofs"] = summary_.per_million_dofs(summary_.seconds_per_step);
+  if (!fc_.steady) {
+    j["initial_state_seconds"] = summary_.initial_seconds;
+    j["first_step_seconds"] = summary_.first_step_seconds;
+    j["settled_steps"] = summary_.settled_steps;
+    j["settled_step_seconds"] = summary_.settled_step_seconds;
+    j["settled_seconds_per_step_per_million_dofs"] =
+        summary_.per_million_dofs(summary_.settled_step_seconds);
+  }
+  j["solver"] = summary_.solver;
+  j["petsc_options"] = fc_.petsc_options;
+  io::write_text(output_dir_ + "/summary.json", j.dump(2) + "\n");
+}
 
-  // `computed`: this step's wall shear stress when the indices already needed it; `with_fluid`:
-  // the fluid volume too ([output] fluid_every), not only the wall.
-  const auto save = [&](double time, const std::vector<Vec3>* computed, bool with_fluid) {
-    const std::string name = fmt::format("{:06d}", summary.saved);
-    if (with_fluid) {
-      const std::vector<Field> fluid_fields{Field::vector("velocity", {}), Field::scalar("pressure", {})};
-      const std::string fluid_file = write_result("fluid_" + name, io::VtkFormat::vtu, fluid_fields,
-                                                  [&](const std::string& path) {
-        if (!pieces) {
-          // The volume's cells in the mesh's numbering, without the boundary faces (as the pieces
-          // under MPI): handed to VTK without copies.
-          io::write_vtu(path, mesh, {Field::vector("velocity", ns.velocity()), Field::scalar("pressure", ns.pressure())},
-                        /*boundary=*/false);
-          return;
-        }
-        const std::vector<Vec3>& u = ns.local_velocity();
-        const std::vector<double> p = ns.local_pressure();
-        std::vector<Vec3> velocity(fluid_local.size());
-        std::vector<double> pressure(fluid_local.size());
-        for (size_t k = 0; k < fluid_local.size(); ++k) {
-          velocity[k] = u[fluid_local[k]];
-          pressure[k] = p[fluid_local[k]];
-        }
-        io::write_vtu(path, fluid_piece, {Field::vector("velocity", velocity), Field::scalar("pressure", pressure)});
+// A result file: whole on one process (NAME.vtu / NAME.vtp); under MPI each process writes its
+// piece (pieces/NAME_RANK.vtu) and, once all have, the first the .pvtu / .pvtp that joins them.
+// `write_piece(path)` writes this process's; `fields` describe its point data. Returns the name.
+std::string Run::write_result(const std::string& name, io::VtkFormat format,
+                              const std::vector<Field>& fields,
+                              const std::function<void(const std::string&)>& write_piece) const {
+  const std::string ext = format == io::VtkFormat::vtu ? "vtu" : "vtp";
+  if (!pieces_) {
+    write_piece(output_dir_ + "/" + name + "." + ext);
+    return name + "." + ext;
+  }
+  write_piece(fmt::format("{}/pieces/{}_{}.{}", output_dir_, name, rank_, ext));
+  parallel::any_process(false);  // every piece written
+  if (writer_) {
+    std::vector<std::string> sources;
+    for (int r = 0; r < ranks_; ++r)
+      sources.push_back(fmt::format("pieces/{}_{}.{}", name, r, ext));
+    io::write_parallel_file(output_dir_ + "/" + name + ".p" + ext, format, sources, fields);
+  }
+  return name + ".p" + ext;
+}
+
+void Run::write_indices() {
+  if (indices_.samples() < 2) return;
+  const post::WssIndices r = indices_.result();
+  const std::string file =
+      write_result("indices", io::VtkFormat::vtp,
+                   {Field::scalar("tawss", {}), Field::scalar("osi", {}), Field::scalar("rrt", {}),
+                    Field::scalar("twssg", {})},
+                   [&](const std::string& path) { post::write_indices(path, wall_.mesh, r); });
+  summary_.indices_start = r.start;
+  summary_.indices_end = r.end;
+  summary_.indices_file = file;
+  reporter_.info(fmt::format(
+      "{}: tawss (Pa), osi, rrt (1/Pa), twssg (Pa/s) over t = {:g} to {:g} s, {} samples", file,
+      r.start, r.end, r.samples));
+}
+
+// `computed`: this step's wall shear stress when the indices already needed it; `with_fluid`:
+// the fluid volume too ([output] fluid_every), not only the wall.
+void Run::save(double time, const std::vector<Vec3>* computed, bool with_fluid) {
+  const std::string name = fmt::format("{:06d}", summary_.saved);
+  if (with_fluid) {
+    const std::vector<Field> fluid_fields{Field::vector("velocity", {}),
+                                          Field::scalar("pressure", {})};
+    const std::string fluid_file = write_result(
+        "fluid_" + name, io::VtkFormat::vtu, fluid_fields, [&](const std::string& path) {
+          if (!pieces_) {
+            // The volume's cells in the mesh's numbering, without the boundary faces (as the pieces
+            // under MPI): handed to VTK without copies.
+            io::write_vtu(path, mesh_,
+                          {Field::vector("velocity", ns_->gathered_velocity()),
+                           Field::scalar("pressure", ns_->gathered_pressure())},
+                          /*boundary=*/false);
+            return;
+          }
+          const std::vector<Vec3>& u = ns_->local_velocity();
+          const std::vector<double> p = ns_->local_pressure();
+          std::vector<Vec3> velocity(fluid_local_.size());
+          std::vector<double> pressure(fluid_local_.size());
+          for (size_t k = 0; k < fluid_local_.size(); ++k) {
+            velocity[k] = u[fluid_local_[k]];
+            pressure[k] = p[fluid_local_[k]];
+          }
+          io::write_vtu(path, fluid_piece_,
+                        {Field::vector("velocity", velocity), Field::scalar("pressure", pressure)});
+        });
+    fluid_files_.emplace_back(time, fluid_file);
+  }
+  const std::vector<Vec3> tau = computed ? *computed : wall_stress();
+  std::vector<double> magnitude(tau.size());
+  for (size_t i = 0; i < tau.size(); ++i) magnitude[i] = tau[i].norm();
+  const std::string wall_file = write_result(
+      "wall_" + name, io::VtkFormat::vtp,
+      {Field::vector("wss", {}), Field::scalar("wss_magnitude", {})}, [&](const std::string& path) {
+        io::write_vtp(path, wall_.mesh,
+                      {Field::vector("wss", tau), Field::scalar("wss_magnitude", magnitude)});
       });
-      fluid_files.emplace_back(time, fluid_file);
-    }
-    const std::vector<Vec3> tau = computed ? *computed : wall_stress();
-    std::vector<double> magnitude(tau.size());
-    for (size_t i = 0; i < tau.size(); ++i) magnitude[i] = tau[i].norm();
-    const std::string wall_file =
-        write_result("wall_" + name, io::VtkFormat::vtp, {Field::vector("wss", {}), Field::scalar("wss_magnitude", {})},
-                     [&](const std::string& path) {
-                       io::write_vtp(path, wall.mesh, {Field::vector("wss", tau), Field::scalar("wss_magnitude", magnitude)});
-                     });
-    wall_files.emplace_back(time, wall_file);
-    summary.saved += 1;
-    if (!writer) return;
-    io::write_text(output_dir + "/fluid.pvd", pvd(fluid_files, units));
-    io::write_text(output_dir + "/wall.pvd", pvd(wall_files, units));
-    write_logs();
-  };
+  wall_files_.emplace_back(time, wall_file);
+  summary_.saved += 1;
+  if (!writer_) return;
+  io::write_text(output_dir_ + "/fluid.pvd", pvd(fluid_files_, units_));
+  io::write_text(output_dir_ + "/wall.pvd", pvd(wall_files_, units_));
+  write_logs();
+}
 
-  const auto log_step = [&](const StepReport& r) {
-    std::string line = fmt::format("{},{:.9g}", r.step, r.time);
-    const std::vector<BoundaryFlow> flows = ns.boundary_flows();
-    for (size_t k = 0; k < flows.size(); ++k) {
-      line += fmt::format(",{:.9g},{:.9g}", flows[k].flux, flows[k].mean_pressure);
-      if (fc.boundaries[k].type == BoundaryType::rcr) line += fmt::format(",{:.9g}", flows[k].capacitor_pressure);
-    }
-    line += fmt::format(",{},{:.4g},{:.4g},{:.4g},{:.4g}\n", r.linear_iterations, r.max_cfl, r.assembly_seconds,
-                        r.solve_seconds, r.seconds);
-    log_line(line);
-  };
-
-  // Checkpoints: the state to go on from, in the mesh's numbering.
-  const std::string checkpoint_path = output_dir + "/checkpoint.bin";
-  const auto write_checkpoint_now = [&]() {
-    // Each process's own points in a piece of its own, then (all written) the first writes the
-    // checkpoint and removes the pieces of the one before.
-    FlowState own = ns.own_state();
-    write_checkpoint_piece(checkpoint_piece_path(checkpoint_path, own.steps, rank), own);
-    auto gathered = gather_indices(indices.state(), wall.mesh_point);  // on the first once every piece is written
-    if (!writer) return;
-    Checkpoint c;
-    c.fingerprint = fingerprint;
-    c.flow.time = own.time;
-    c.flow.steps = own.steps;
-    c.flow.capacitor_pressure = own.capacitor_pressure;
-    c.pieces = ranks;
-    c.saved = summary.saved;
-    c.linear_iterations = summary.linear_iterations;
-    c.log = log;
-    c.fluid_files = fluid_files;
-    c.wall_files = wall_files;
-    c.indices = std::move(gathered.first);
-    c.index_points = std::move(gathered.second);
-    write_checkpoint(checkpoint_path, c);
-    // The pieces of the checkpoints before (CHECKPOINT.SSSSSS.K of another step SSSSSS).
-    const std::string name = std::filesystem::path(checkpoint_path).filename().string() + ".";
-    const std::string current = fmt::format("{}{:06d}.", name, c.flow.steps);
-    for (const auto& entry : std::filesystem::directory_iterator(output_dir)) {
-      const std::string file = entry.path().filename().string();
-      const bool piece = file.starts_with(name) && file.size() > name.size() + 7 && file[name.size() + 6] == '.' &&
-                         std::all_of(file.begin() + static_cast<std::ptrdiff_t>(name.size()), file.end(),
-                                     [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)) || ch == '.'; });
-      if (piece && !file.starts_with(current)) std::filesystem::remove(entry.path());
-    }
-  };
-  int first_step = 0;
-  if (restart) {
-    if (fc.steady) throw InputError(fmt::format("{}: --restart: a steady case has no time steps to go on from", fc.path));
-    if (!std::filesystem::exists(checkpoint_path))
-      throw InputError(fmt::format("{}: no checkpoint to restart from; run the case without --restart", checkpoint_path));
-    Checkpoint c = read_checkpoint(checkpoint_path);
-    if (c.pieces > 0) {  // each process keeps its own points' state as it reads the pieces
-      std::vector<int> wanted = ns.local_points();
-      std::sort(wanted.begin(), wanted.end());
-      c.flow = read_checkpoint_pieces(checkpoint_path, c, wanted, mesh_points);
-    }
-    if (parallel::any_process(writer && c.fingerprint != fingerprint))
-      throw InputError(fmt::format("{}: the checkpoint is of another mesh or time step than {}'s; run the case without "
-                                   "--restart (or into another folder)",
-                                   checkpoint_path, fc.path));
-    ns.restore(c.flow);
-    first_step = c.flow.steps;
-    summary.steps = c.flow.steps;
-    summary.saved = c.saved;
-    summary.linear_iterations = c.linear_iterations;
-    log = c.log;
-    end_texts = end_logs(log, end_tags);
-    fluid_files = c.fluid_files;
-    wall_files = c.wall_files;
-    indices.restore(indices_at(c.indices, c.index_points, wall.mesh_point, checkpoint_path));
-    if (writer) {  // the folder as it was at the checkpoint (later saves are written again)
-      io::write_text(output_dir + "/fluid.pvd", pvd(fluid_files, units));
-      io::write_text(output_dir + "/wall.pvd", pvd(wall_files, units));
-      write_logs();
-    }
-    reporter.info(fmt::format("restart from {}: step {}, t = {:g} s", checkpoint_path, c.flow.steps, c.flow.time));
+void Run::log_step(const StepReport& r) {
+  std::string line = fmt::format("{},{:.9g}", r.step, r.time);
+  const std::vector<BoundaryFlow> flows = ns_->boundary_flows();
+  for (size_t k = 0; k < flows.size(); ++k) {
+    line += fmt::format(",{:.9g},{:.9g}", flows[k].flux, flows[k].mean_pressure);
+    if (fc_.boundaries[k].type == BoundaryType::rcr)
+      line += fmt::format(",{:.9g}", flows[k].capacitor_pressure);
   }
+  line += fmt::format(",{},{:.4g},{:.4g},{:.4g},{:.4g}\n", r.linear_iterations, r.max_cfl,
+                      r.assembly_seconds, r.solve_seconds, r.seconds);
+  log_line(line);
+}
 
-  const auto solve_start = Clock::now();
-  // The run's end (completed or stopped): its times, every process's memory, the summary.
-  const auto finish = [&](const char* status) {
-    summary.status = status;
-    summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    const double solving = std::chrono::duration<double>(Clock::now() - solve_start).count();
-    summary.seconds_per_step = summary.steps > first_step ? solving / (summary.steps - first_step) : 0.0;
-    gather_memory();
-    summary.ends = ns.boundary_flows();  // every process takes part
-    write_summary();
-  };
+// Each process's own points in a piece of its own, then (all written) the first writes the
+// checkpoint and removes the pieces of the one before.
+void Run::write_checkpoint_now() {
+  FlowState own = ns_->own_state();
+  write_checkpoint_piece(checkpoint_piece_path(checkpoint_path_, own.steps, rank_), own);
+  auto gathered = gather_indices(indices_.state(),
+                                 wall_.mesh_point);  // on the first once every piece is written
+  if (!writer_) return;
+  Checkpoint c;
+  c.fingerprint = fingerprint_;
+  c.flow.time = own.time;
+  c.flow.steps = own.steps;
+  c.flow.capacitor_pressure = own.capacitor_pressure;
+  c.pieces = ranks_;
+  c.saved = summary_.saved;
+  c.linear_iterations = summary_.linear_iterations;
+  c.log = log_;
+  c.fluid_files = fluid_files_;
+  c.wall_files = wall_files_;
+  c.indices = std::move(gathered.first);
+  c.index_points = std::move(gathered.second);
+  write_checkpoint(checkpoint_path_, c);
+  // The pieces of the checkpoints before (CHECKPOINT.SSSSSS.K of another step SSSSSS).
+  const std::string name = std::filesystem::path(checkpoint_path_).filename().string() + ".";
+  const std::string current = fmt::format("{}{:06d}.", name, c.flow.steps);
+  for (const auto& entry : std::filesystem::directory_iterator(output_dir_)) {
+    const std::string file = entry.path().filename().string();
+    const bool piece =
+        file.starts_with(name) && file.size() > name.size() + 7 && file[name.size() + 6] == '.' &&
+        std::all_of(
+            file.begin() + static_cast<std::ptrdiff_t>(name.size()), file.end(),
+            [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)) || ch == '.'; });
+    if (piece && !file.starts_with(current)) std::filesystem::remove(entry.path());
+  }
+}
 
-  try {
-    if (fc.steady) {
-      const StepReport r = ns.solve_steady();
-      summary.steady_residual = r.residual;
-      summary.steps = r.step;
-      summary.linear_iterations = r.linear_iterations;
-      log_step(r);
-      summary.solver = ns.solver_description();
-      save(0.0, nullptr, true);
+void Run::restore_checkpoint() {
+  if (fc_.steady)
+    throw InputError(
+        fmt::format("{}: --restart: a steady case has no time steps to go on from", fc_.path));
+  if (!std::filesystem::exists(checkpoint_path_))
+    throw InputError(fmt::format(
+        "{}: no checkpoint to restart from; run the case without --restart", checkpoint_path_));
+  Checkpoint c = read_checkpoint(checkpoint_path_);
+  if (c.pieces > 0) {  // each process keeps its own points' state as it reads the pieces
+    std::vector<int> wanted = ns_->local_points();
+    std::sort(wanted.begin(), wanted.end());
+    c.flow = read_checkpoint_pieces(checkpoint_path_, c, wanted, mesh_points_);
+  }
+  if (parallel::any_process(writer_ && c.fingerprint != fingerprint_))
+    throw InputError(fmt::format(
+        "{}: the checkpoint is of another mesh or time step than {}'s; run the case without "
+        "--restart (or into another folder)",
+        checkpoint_path_, fc_.path));
+  ns_->restore(c.flow);
+  first_step_ = c.flow.steps;
+  summary_.steps = c.flow.steps;
+  summary_.saved = c.saved;
+  summary_.linear_iterations = c.linear_iterations;
+  log_ = c.log;
+  end_texts_ = end_logs(log_, end_tags_);
+  fluid_files_ = c.fluid_files;
+  wall_files_ = c.wall_files;
+  indices_.restore(indices_at(c.indices, c.index_points, wall_.mesh_point, checkpoint_path_));
+  if (writer_) {  // the folder as it was at the checkpoint (later saves are written again)
+    io::write_text(output_dir_ + "/fluid.pvd", pvd(fluid_files_, units_));
+    io::write_text(output_dir_ + "/wall.pvd", pvd(wall_files_, units_));
+    write_logs();
+  }
+  reporter_.info(fmt::format("restart from {}: step {}, t = {:g} s", checkpoint_path_, c.flow.steps,
+                             c.flow.time));
+}
+
+// The run's end (completed or stopped): its times, every process's memory, the summary.
+void Run::finish(const char* status) {
+  summary_.status = status;
+  summary_.seconds = std::chrono::duration<double>(Clock::now() - start_).count();
+  const double solving = std::chrono::duration<double>(Clock::now() - solve_start_).count();
+  summary_.seconds_per_step =
+      summary_.steps > first_step_ ? solving / (summary_.steps - first_step_) : 0.0;
+  gather_memory();
+  summary_.ends = ns_->boundary_flows();  // every process takes part
+  write_summary();
+}
+
+void Run::run_steady() {
+  const StepReport r = ns_->solve_steady();
+  summary_.steady_residual = r.residual;
+  summary_.steps = r.step;
+  summary_.linear_iterations = r.linear_iterations;
+  log_step(r);
+  summary_.solver = ns_->solver_description();
+  save(0.0, nullptr, true);
+}
+
+bool Run::run_time_steps() {
+  const int steps = static_cast<int>(std::ceil(fc_.end / fc_.dt - 1e-9));
+  reporter_.info(fmt::format("{} steps of {:g} s to t = {:g} s, {} dofs", steps, fc_.dt, fc_.end,
+                             ns_->dofs()));
+  if (fc_.stokes_start && !restart_) {
+    const StepReport r = ns_->start_from_stokes();
+    reporter_.info(
+        fmt::format("initial state: the Stokes flow at t = {:g} s ({} linear iterations, {:.3g} s)",
+                    r.time, r.linear_iterations, r.seconds));
+    summary_.initial_seconds = r.seconds;
+  }
+  if (first_step_ >= steps)
+    reporter_.warning(fmt::format(
+        "the checkpoint is at step {}, the case ends at step {}: nothing to do (a later "
+        "[time] end extends the run)",
+        first_step_, steps));
+  const StopSignals signals;
+  for (int k = first_step_; k < steps; ++k) {
+    const StepReport r = ns_->step();
+    summary_.steps = r.step;
+    summary_.linear_iterations += r.linear_iterations;
+    log_step(r);
+    if (k == 0) summary_.solver = ns_->solver_description();
+    if (k == first_step_) {
+      summary_.first_step_seconds = r.seconds;
     } else {
-      const int steps = static_cast<int>(std::ceil(fc.end / fc.dt - 1e-9));
-      reporter.info(fmt::format("{} steps of {:g} s to t = {:g} s, {} dofs", steps, fc.dt, fc.end, ns.dofs()));
-      if (fc.stokes_start && !restart) {
-        const StepReport r = ns.start_from_stokes();
-        reporter.info(fmt::format("initial state: the Stokes flow at t = {:g} s ({} linear iterations, {:.3g} s)",
-                                  r.time, r.linear_iterations, r.seconds));
-        summary.initial_seconds = r.seconds;
-      }
-      if (first_step >= steps)
-        reporter.warning(fmt::format("the checkpoint is at step {}, the case ends at step {}: nothing to do (a later "
-                                     "[time] end extends the run)",
-                                     first_step, steps));
-      const StopSignals signals;
-      for (int k = first_step; k < steps; ++k) {
-        const StepReport r = ns.step();
-        summary.steps = r.step;
-        summary.linear_iterations += r.linear_iterations;
-        log_step(r);
-        if (k == 0) summary.solver = ns.solver_description();
-        if (k == first_step) {
-          summary.first_step_seconds = r.seconds;
-        } else {
-          summary.settled_step_seconds += (r.seconds - summary.settled_step_seconds) / (summary.settled_steps + 1);
-          ++summary.settled_steps;
-        }
-        std::vector<Vec3> tau;
-        const bool in_window = r.time >= window_start - 0.5 * fc.dt;
-        if (in_window) {
-          tau = wall_stress();
-          indices.add(r.time, tau);
-        }
-        if (r.step % fc.save_every == 0 || k + 1 == steps)
-          save(r.time, in_window ? &tau : nullptr,
-               k + 1 == steps || (fc.fluid_every > 0 && r.step % fc.fluid_every == 0));
-        // Every process stops at the same step (a signal may reach them apart).
-        const bool stop = parallel::any_process(stop_signal != 0);
-        if (stop || k + 1 == steps || (fc.checkpoint_every > 0 && r.step % fc.checkpoint_every == 0))
-          write_checkpoint_now();
-        if (stop) {
-          summary.signal = stop_signal != 0 ? static_cast<int>(stop_signal) : SIGTERM;
-          write_logs();
-          finish("stopped");
-          reporter.warning(fmt::format("stopped by signal {} after step {} (t = {:g} s); the checkpoint {} holds it: "
-                                       "'vesselmesh simulate {} -o {} --restart' goes on",
-                                       summary.signal, r.step, r.time, checkpoint_path, fc.path, output_dir));
-          return summary;
-        }
-        reporter.progress("time steps", double(k + 1) / steps);
-      }
+      summary_.settled_step_seconds +=
+          (r.seconds - summary_.settled_step_seconds) / (summary_.settled_steps + 1);
+      ++summary_.settled_steps;
     }
+    std::vector<Vec3> tau;
+    const bool in_window = r.time >= window_start_ - 0.5 * fc_.dt;
+    if (in_window) {
+      tau = wall_stress();
+      indices_.add(r.time, tau);
+    }
+    if (r.step % fc_.save_every == 0 || k + 1 == steps)
+      save(r.time, in_window ? &tau : nullptr,
+           k + 1 == steps || (fc_.fluid_every > 0 && r.step % fc_.fluid_every == 0));
+    // Every process stops at the same step (a signal may reach them apart).
+    const bool stop = parallel::any_process(stop_signal != 0);
+    if (stop || k + 1 == steps || (fc_.checkpoint_every > 0 && r.step % fc_.checkpoint_every == 0))
+      write_checkpoint_now();
+    if (stop) {
+      summary_.signal = stop_signal != 0 ? static_cast<int>(stop_signal) : SIGTERM;
+      write_logs();
+      finish("stopped");
+      reporter_.warning(fmt::format(
+          "stopped by signal {} after step {} (t = {:g} s); the checkpoint {} holds it: "
+          "'vesselmesh simulate {} -o {} --restart' goes on",
+          summary_.signal, r.step, r.time, checkpoint_path_, fc_.path, output_dir_));
+      return false;
+    }
+    reporter_.progress("time steps", double(k + 1) / steps);
+  }
+  return true;
+}
+
+SimulationSummary Run::go() {
+  solve_start_ = Clock::now();
+  try {
+    if (fc_.steady)
+      run_steady();
+    else if (!run_time_steps())
+      return summary_;
   } catch (const ComputationError&) {
-    summary.status = "diverged";
-    summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    summary_.status = "diverged";
+    summary_.seconds = std::chrono::duration<double>(Clock::now() - start_).count();
     write_logs();
     write_summary();
     throw;
   }
   write_indices();
   finish("completed");
-  return summary;
+  return summary_;
+}
+
+}  // namespace
+
+SimulationSummary simulate(const FlowCase& input_case, const std::string& output_dir,
+                           const std::string& extra_petsc_options, const Reporter& all_reporter,
+                           bool restart) {
+  Run run(input_case, output_dir, extra_petsc_options, all_reporter, restart);
+  run.read_and_distribute();  // the first process reads; every process gets its part
+  run.describe_partition();
+  run.open_logs();
+  if (restart) run.restore_checkpoint();
+  return run.go();
 }
 
 }  // namespace vesselmesh::flow

@@ -107,7 +107,7 @@ TEST(NavierStokes, SteadyPoiseuilleInAPipeWithABoundaryLayer) {
     const double rr = std::hypot(x.x(), x.y()) / R;
     if (rr > 0.999) continue;
     const double exact = peak * (1.0 - rr * rr);
-    worst = std::max(worst, std::abs(ns.velocity()[i].z() - exact) / peak);
+    worst = std::max(worst, std::abs(ns.gathered_velocity()[i].z() - exact) / peak);
     ++checked;
   }
   EXPECT_GT(checked, 100);
@@ -124,7 +124,7 @@ TEST(NavierStokes, SteadyPoiseuilleInAPipeWithABoundaryLayer) {
 
   const Wall wall(mesh);
   for (post::WssMethod method : {post::WssMethod::quadratic, post::WssMethod::face}) {
-    const WssErrors e = poiseuille_wss_errors(wall, ns.velocity(), fc.viscosity, q, R, L, method);
+    const WssErrors e = poiseuille_wss_errors(wall, ns.gathered_velocity(), fc.viscosity, q, R, L, method);
     std::printf("Poiseuille: %d points, %d dofs, velocity error %.3f %% of peak, WSS (%s) mean %.2f %% off, worst "
                 "%.2f %%, %d linear iterations, %.2f s\n",
                 mesh.num_points(), ns.dofs(), 100 * worst, post::to_string(method), 100 * e.mean, 100 * e.worst,
@@ -157,7 +157,7 @@ TEST(NavierStokes, PoiseuilleInAnExtendedPipeAsInAnEquallyLongOne) {
     NavierStokes ns(mesh, fc);
     ns.solve_steady();
     // The original pipe's middle: z from 0 to L in the extended mesh, from 1.5 R to 1.5 R + L in the long one.
-    errors[k] = poiseuille_wss_errors(Wall(mesh), ns.velocity(), fc.viscosity, q, R, L, post::WssMethod::quadratic,
+    errors[k] = poiseuille_wss_errors(Wall(mesh), ns.gathered_velocity(), fc.viscosity, q, R, L, post::WssMethod::quadratic,
                                       k == 0 ? extension * R : 0.0);
   }
   std::printf("Poiseuille WSS, mean error in the middle: one long pipe %+.2f %%, an extended pipe %+.2f %% (%d and %d "
@@ -198,9 +198,9 @@ TEST(NavierStokes, SteadyFlowIsWhereALongUnsteadyRunSettles) {
     EXPECT_LT(change, 1e-5) << "settled, dt " << dt;
     double worst = 0.0, worst_p = 0.0, p_scale = 0.0;
     for (int a = 0; a < mesh.num_points(); ++a) {
-      worst = std::max(worst, (unsteady.velocity()[a] - steady.velocity()[a]).norm());
-      worst_p = std::max(worst_p, std::abs(unsteady.pressure()[a] - steady.pressure()[a]));
-      p_scale = std::max(p_scale, std::abs(steady.pressure()[a]));
+      worst = std::max(worst, (unsteady.gathered_velocity()[a] - steady.gathered_velocity()[a]).norm());
+      worst_p = std::max(worst_p, std::abs(unsteady.gathered_pressure()[a] - steady.gathered_pressure()[a]));
+      p_scale = std::max(p_scale, std::abs(steady.gathered_pressure()[a]));
     }
     difference[dt] = worst / peak;
     std::printf("dt %g s, %d steps: largest velocity difference %.2e of the peak, pressure %.2e of its largest\n", dt,
@@ -224,8 +224,8 @@ TEST(NavierStokes, SteadyPoiseuilleOnPureTetrahedra) {
   EXPECT_TRUE(settled(ns.solve_steady(), 1e-6));
   const Wall wall(mesh);
   const WssErrors quadratic =
-      poiseuille_wss_errors(wall, ns.velocity(), fc.viscosity, Q * 1e-6, R, L, post::WssMethod::quadratic);
-  const WssErrors face = poiseuille_wss_errors(wall, ns.velocity(), fc.viscosity, Q * 1e-6, R, L, post::WssMethod::face);
+      poiseuille_wss_errors(wall, ns.gathered_velocity(), fc.viscosity, Q * 1e-6, R, L, post::WssMethod::quadratic);
+  const WssErrors face = poiseuille_wss_errors(wall, ns.gathered_velocity(), fc.viscosity, Q * 1e-6, R, L, post::WssMethod::face);
   std::printf("Poiseuille on pure tetrahedra, %d points: WSS mean off by %.2f %% (quadratic), %.2f %% (face); worst "
               "%.2f %%, %.2f %%\n",
               mesh.num_points(), 100 * quadratic.mean, 100 * face.mean, 100 * quadratic.worst, 100 * face.worst);
@@ -293,7 +293,7 @@ TEST(NavierStokes, AnisotropicWallPoiseuilleAsGoodAsUniform) {
       NavierStokes ns(mesh, fc);
       EXPECT_TRUE(settled(ns.solve_steady(), 1e-6));
       const Wall wall(mesh);
-      error[k] = median_wss_error(wall, ns.velocity(), fc.viscosity, q, R, L);
+      error[k] = median_wss_error(wall, ns.gathered_velocity(), fc.viscosity, q, R, L);
       points[k] = mesh.num_points();
       double centre = 0.0;  // the axial velocity at the axis, mid-pipe, over the analytic peak
       int n = 0;
@@ -301,7 +301,7 @@ TEST(NavierStokes, AnisotropicWallPoiseuilleAsGoodAsUniform) {
         const Vec3& x = mesh.points[a];
         if (std::hypot(x.x(), x.y()) < 0.2 * R && std::abs(x.z() - L / 2) < 0.25 * L) {
           const double rr = std::hypot(x.x(), x.y()) / R;
-          centre += ns.velocity()[a].z() / (peak * (1.0 - rr * rr));
+          centre += ns.gathered_velocity()[a].z() / (peak * (1.0 - rr * rr));
           ++n;
         }
       }
@@ -344,11 +344,11 @@ TEST(NavierStokes, TheSameFlowWhateverThePointNumbering) {
       }
     }
     const double peak = 2.0 * Q * 1e-6 / (M_PI * R * R * 1e-6);
-    const std::vector<double> pa = a.pressure(), pb = b.pressure();
+    const std::vector<double> pa = a.gathered_pressure(), pb = b.gathered_pressure();
     const double p_scale = *std::max_element(pa.begin(), pa.end()) - *std::min_element(pa.begin(), pa.end());
     double worst_u = 0.0, worst_p = 0.0;
     for (size_t k = 0; k < order.size(); ++k) {
-      worst_u = std::max(worst_u, (b.velocity()[k] - a.velocity()[order[k]]).norm() / peak);
+      worst_u = std::max(worst_u, (b.gathered_velocity()[k] - a.gathered_velocity()[order[k]]).norm() / peak);
       worst_p = std::max(worst_p, std::abs(pb[k] - pa[order[k]]) / p_scale);
     }
     EXPECT_LT(worst_u, 1e-7) << time;
@@ -419,7 +419,7 @@ TEST(NavierStokes, RowsOfMoreThan256PointsAreAssembledToo) {
   }
   EXPECT_NEAR(in, -Q * 1e-6, 1e-3 * Q * 1e-6);
   EXPECT_NEAR(out, -in, 1e-6 * std::abs(in));
-  for (int k = 1; k < 8; ++k) EXPECT_GT(ns.velocity()[k].z(), 0.0) << "axis point " << k;
+  for (int k = 1; k < 8; ++k) EXPECT_GT(ns.gathered_velocity()[k].z(), 0.0) << "axis point " << k;
   std::printf("star pipe: an axis point's row of %zu points; inlet %.6e, outlet %.6e m3/s\n", neighbours[4].size(), in,
               out);
 }
@@ -443,8 +443,8 @@ TEST(NavierStokes, TheSameFlowToTheBitWhateverTheThreads) {
         ns.start_from_stokes();
         for (int k = 0; k < 2; ++k) ns.step();
       }
-      velocity[threads - 1] = ns.velocity();
-      pressure[threads - 1] = ns.pressure();
+      velocity[threads - 1] = ns.gathered_velocity();
+      pressure[threads - 1] = ns.gathered_pressure();
     }
     for (int k = 1; k < 3; ++k) {
       ASSERT_EQ(velocity[k].size(), velocity[0].size());
@@ -494,7 +494,7 @@ TEST(NavierStokes, StokesStartIsTheDevelopedFlow) {
     int n = 0;
     for (int a = 0; a < mesh.num_points(); ++a) {
       const Vec3& x = mesh.points[a];
-      if (std::hypot(x.x(), x.y()) < 0.25 && std::abs(x.z() - L / 2) < 1.5) sum += ns.velocity()[a].z(), ++n;
+      if (std::hypot(x.x(), x.y()) < 0.25 && std::abs(x.z() - L / 2) < 1.5) sum += ns.gathered_velocity()[a].z(), ++n;
     }
     EXPECT_GT(n, 0);
     return sum / std::max(n, 1);
@@ -582,7 +582,7 @@ TEST(NavierStokes, SteadyRcrOutletCarriesTheSumOfItsResistancesTimesQ) {
       EXPECT_NEAR(f.flux, q, 1e-3 * q);
       EXPECT_NEAR(f.mean_pressure, (rp + rd) * q, 0.01 * (rp + rd) * q);
     }
-  EXPECT_NEAR(ns.state().capacitor_pressure[1], rd * q, 1e-3 * rd * q);
+  EXPECT_NEAR(ns.gathered_state().capacitor_pressure[1], rd * q, 1e-3 * rd * q);
 }
 
 // An rcr outlet under a sinusoidal inflow Q0 + Q1 sin(wt): over a period the outlet's pressure
@@ -705,7 +705,7 @@ std::array<WomersleyErrors, 2> womersley_errors(const TetMesh& mesh, double R, d
     iterations += report.linear_iterations;
     const double t = ns.time();
     for (int m = 0; m < 2; ++m) {
-      const std::vector<Vec3> tau = wall.wss(ns.velocity(), viscosity, methods[m]);
+      const std::vector<Vec3> tau = wall.wss(ns.gathered_velocity(), viscosity, methods[m]);
       double sum = 0.0;
       int count = 0;
       for (size_t v = 0; v < tau.size(); ++v) {

@@ -51,7 +51,7 @@ TEST(NavierStokes, PseudoTransientSteadyReachesPicardsFlow) {
   const double peak = 2.0 * Q * 1e-6 / (M_PI * R * R * 1e-6);
   double worst = 0.0;
   for (int a = 0; a < mesh.num_points(); ++a)
-    worst = std::max(worst, (pseudo.velocity()[a] - picard.velocity()[a]).norm());
+    worst = std::max(worst, (pseudo.gathered_velocity()[a] - picard.gathered_velocity()[a]).norm());
   std::printf("pseudo-transient: %d iterations (Picard %d), largest velocity difference %.2e of the peak\n",
               by_pseudo.step, by_picard.step, worst / peak);
   EXPECT_LT(worst, 1e-4 * peak);
@@ -87,7 +87,7 @@ TEST(NavierStokes, NewtonSteadyReachesPicardsFlowInFewerIterations) {
   const double peak = 2.0 * Q * 1e-6 / (M_PI * R * R * 1e-6);
   double worst = 0.0;
   for (int a = 0; a < mesh.num_points(); ++a)
-    worst = std::max(worst, (newton.velocity()[a] - picard.velocity()[a]).norm());
+    worst = std::max(worst, (newton.gathered_velocity()[a] - picard.gathered_velocity()[a]).norm());
   std::printf("bend, %d points: Newton %d iterations (%d linear, residual %.2e), Picard %d (%d, residual %.2e), "
               "largest velocity difference %.2e of the peak\n",
               mesh.num_points(), by_newton.step, by_newton.linear_iterations, by_newton.residual, by_picard.step,
@@ -130,7 +130,7 @@ TEST(NavierStokes, NewtonSettlesSuperlinearlyWhereFlowEntersAnOpenEnd) {
   const double z_out = synth::nozzle_extent(o).second;
   int inflowing = 0, outlet = 0;
   for (int a = 0; a < mesh.num_points(); ++a)
-    if (std::abs(mesh.points[a].z() - z_out) < 1e-6) ++outlet, inflowing += ns.velocity()[a].z() < -1e-3 ? 1 : 0;
+    if (std::abs(mesh.points[a].z() - z_out) < 1e-6) ++outlet, inflowing += ns.gathered_velocity()[a].z() < -1e-3 ? 1 : 0;
   std::vector<double> falls;
   for (size_t k = 1; k < residuals.values.size(); ++k) falls.push_back(residuals.values[k - 1] / residuals.values[k]);
   std::printf("nozzle, %d points: Newton %d iterations (%d linear), residual %.2e; %d of %d outlet points inflowing; "
@@ -198,7 +198,7 @@ TEST(NavierStokes, SteadySystemsTheIterativeSolverMissesAreSolvedDirectly) {
   const double peak = 2.0 * Q * 1e-6 / (M_PI * R * R * 1e-6);
   double worst = 0.0;
   for (int a = 0; a < mesh.num_points(); ++a)
-    worst = std::max(worst, (direct.velocity()[a] - iterative.velocity()[a]).norm());
+    worst = std::max(worst, (direct.gathered_velocity()[a] - iterative.gathered_velocity()[a]).norm());
   EXPECT_LT(worst, 1e-4 * peak);
 
   // And one it says converged whose true residual is far off (preconditioned by an inner Krylov
@@ -215,7 +215,7 @@ TEST(NavierStokes, SteadySystemsTheIterativeSolverMissesAreSolvedDirectly) {
   EXPECT_LT(c.change, 1e-8);
   worst = 0.0;
   for (int a = 0; a < mesh.num_points(); ++a)
-    worst = std::max(worst, (checked.velocity()[a] - iterative.velocity()[a]).norm());
+    worst = std::max(worst, (checked.gathered_velocity()[a] - iterative.gathered_velocity()[a]).norm());
   EXPECT_LT(worst, 1e-4 * peak);
 }
 
