@@ -573,8 +573,7 @@ SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::ve
   // Reuse the preconditioner while the solve before did not take much more than the fewest any
   // solve took with it; cap the reusing solve at twice that, and repeat it with a new
   // preconditioner if it fails.
-  const int reuse_limit =
-      static_cast<int>(kReuseGrowth * std::max(s.least_iterations, 0)) + kReuseSlack;
+  const int reuse_limit = std::max(s.least_iterations, 0) + kReuseSlack;
   const bool reuse = s.reuse && s.least_iterations >= 0 && s.last_iterations <= reuse_limit;
   PetscReal rtol = 0, abstol = 0, dtol = 0;
   PetscInt max_it = 0;

@@ -267,18 +267,24 @@ class LinearSolver {
 
   // Keep the preconditioner from one solve to the next while it still serves (a time step's
   // matrix changes little from the step before, and building ILU or AMG costs more than the few
-  // extra iterations): it is built anew when the solve before took more than kReuseGrowth x the
-  // fewest iterations a solve has taken with it (plus kReuseSlack), and a solve that reuses it is
-  // capped at twice that count, then repeated with a new one. (Against the building solve's
-  // count, as before, a preconditioner built in a run's first, hardest steps served on while its
-  // iterations doubled: on a bifurcation aneurysm at Re 300, 81k unknowns, 300 steps of 1 ms, 25
-  // a step on average and 0.140 s a solve, where one built every step took 14 and 0.103 s.)
+  // extra iterations): it is built anew when the solve before took more than the fewest iterations
+  // a solve has taken with it plus kReuseSlack (about what building it costs), and a solve that
+  // reuses it is capped at twice that count, then repeated with a new one. (Against the building
+  // solve's count, as before, a preconditioner built in a run's first, hardest steps served on while
+  // its iterations doubled: on a bifurcation aneurysm at Re 300, 81k unknowns, 300 steps of 1 ms, 25
+  // a step on average and 0.140 s a solve, where one built every step took 14 and 0.103 s. Allowing
+  // a quarter more than the fewest too, as before, let a preconditioner of a fast-changing flow
+  // serve while it cost more than building one, and its capped solves that failed were thrown away:
+  // on the FDA nozzle at Re 500 (296k unknowns, CFL ~50, 12 steps of 5 ms from the Stokes flow) 66.5
+  // iterations a step (at most 149) and 2.45-2.80 s a solve against 54.0 (89) and 1.89-2.29 s now
+  // (built every step: 46.1 and 1.72 s); on the anastomosis study's curvature mesh (121k unknowns,
+  // CFL 13-30) 28.4 (43) and 0.43-0.46 s against 26.5 (32) and 0.39-0.43 s; on the pipe of
+  // bench/flow_scaling.sh (86k unknowns, CFL ~5) the same iterations and time (0.094 s built every step).)
   // The answer meets the same tolerance either way. Off by default.
   void reuse_preconditioner(bool on);
   // The next solve builds its preconditioner (the system's kind changed, e.g. after a Stokes
   // solve).
   void rebuild_preconditioner();
-  static constexpr double kReuseGrowth = 1.25;
   static constexpr int kReuseSlack = 4;
 
   // The Krylov method and preconditioner PETSc settled on, e.g. "gmres + fieldsplit".

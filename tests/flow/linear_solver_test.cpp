@@ -134,12 +134,12 @@ TEST(LinearSolver, ReusesThePreconditionerWhileItServes) {
   // A matrix a little different: the old factors still serve, in a few iterations.
   const SolveStats close = solve_shifted(solver, pattern, values, 1e-7, exact);
   EXPECT_FALSE(close.preconditioner_built);
-  EXPECT_LE(close.iterations, 1 * LinearSolver::kReuseGrowth + LinearSolver::kReuseSlack);
+  EXPECT_LE(close.iterations, 1 + LinearSolver::kReuseSlack);
   // Far from it (A's inverse spreads the shift over 0.02 x 4000): the capped solve (twice the
   // reuse limit) fails and is repeated with new factors; the iterations of both are counted.
   const SolveStats far = solve_shifted(solver, pattern, values, 0.02, exact);
   EXPECT_TRUE(far.preconditioner_built);
-  const int limit = static_cast<int>(LinearSolver::kReuseGrowth * 1) + LinearSolver::kReuseSlack;
+  const int limit = 1 + LinearSolver::kReuseSlack;
   EXPECT_EQ(far.iterations, 2 * limit + 1);
   // Between the limit and the cap (factors of A + 0.02 I for A + 0.025 I: 8 iterations): the
   // solve converges with the old factors, and the next one builds new ones.
@@ -199,9 +199,9 @@ TEST(LinearSolver, ReuseLimitFollowsTheFewestIterationsSinceTheBuild) {
   EXPECT_TRUE(built.preconditioner_built);
   EXPECT_FALSE(near.preconditioner_built);
   EXPECT_FALSE(again.preconditioner_built);
-  const int limit = static_cast<int>(LinearSolver::kReuseGrowth * near.iterations) + LinearSolver::kReuseSlack;
+  const int limit = near.iterations + LinearSolver::kReuseSlack;
   ASSERT_GT(again.iterations, limit);  // the case this test is about
-  ASSERT_LE(again.iterations, static_cast<int>(LinearSolver::kReuseGrowth * built.iterations) + LinearSolver::kReuseSlack);
+  ASSERT_LE(again.iterations, built.iterations + LinearSolver::kReuseSlack);
   EXPECT_TRUE(after.preconditioner_built);
   std::printf("iterations: %d building, %d from next to the answer, %d from a thousandth off (limit %d), then built "
               "anew\n",
