@@ -288,6 +288,35 @@ std::map<std::string, std::string> end_logs(const std::string& log, const std::v
 
 namespace {
 
+// Under MPI, the piece of the fluid a process writes: its cells whose least point (in the mesh's
+// numbering) it owns, and per point of the piece its local point.
+struct FluidPiece {
+  TetMesh mesh;
+  std::vector<int> local;
+};
+FluidPiece own_fluid_piece(const MeshPart& part) {
+  FluidPiece piece;
+  piece.mesh.tag_names = part.tag_names;
+  std::vector<int> at(part.points.size(), -1);
+  for (const Tet& t4 : part.tets) {
+    int least = t4[0];
+    for (int a : t4)
+      if (part.local_global[a] < part.local_global[least]) least = a;
+    if (least >= part.owned) continue;  // another process's
+    Tet cell = t4;
+    for (int& a : cell) {
+      if (at[a] < 0) {
+        at[a] = static_cast<int>(piece.local.size());
+        piece.local.push_back(a);
+        piece.mesh.points.push_back(part.points[a]);
+      }
+      a = at[a];
+    }
+    piece.mesh.tets.push_back(cell);
+  }
+  return piece;
+}
+
 // One run of simulate(), in the steps it takes (simulate() calls them in order): the mesh read and
 // distributed, the partition described, the logs opened, a checkpoint restored, then the steady
 // solve or the time steps, each saved, checkpointed and summarized. Under mpirun the first process
@@ -310,6 +339,7 @@ class Run {
         fc_(input_case),
         checkpoint_path_(output_dir + "/checkpoint.bin") {
     if (!extra_petsc_options.empty()) fc_.petsc_options += " " + extra_petsc_options;
+    window_start_ = fc_.period > 0.0 && fc_.period < fc_.end ? fc_.end - fc_.period : 0.0;
   }
 
   void read_and_distribute();
@@ -325,6 +355,7 @@ class Run {
   void log_line(const std::string& line);
   void log_step(const StepReport& r);
   void write_logs() const;
+  void write_series() const;
   void write_summary() const;
   std::string write_result(const std::string& name, io::VtkFormat format,
                            const std::vector<Field>& fields,
@@ -350,8 +381,7 @@ class Run {
   // The results this process writes: the whole mesh on one process; under MPI its piece of the
   // fluid (its cells whose least point it owns) and of the wall (its wall triangles).
   WallPiece wall_;
-  TetMesh fluid_piece_;
-  std::vector<int> fluid_local_;  // per point of the fluid piece, its local point
+  FluidPiece fluid_;
   std::unique_ptr<NavierStokes> ns_;
   std::string units_;
   SimulationSummary summary_;
@@ -388,8 +418,8 @@ void Run::read_and_distribute() {
   MeshPart part = distribute_mesh(writer_ ? &mesh_ : nullptr, fc_.mesh, unread,
                                   pieces_ ? wall_names : std::vector<std::string>{});
   if (pieces_) mesh_ = TetMesh{};  // the parts hold it now
-  summary_.distribution_memory_mb =
-      peak_memory_mb();  // the first process's: the whole mesh read and split
+  // The first process's peak: the whole mesh read and split.
+  summary_.distribution_memory_mb = peak_memory_mb();
   if (pieces_)
     reporter_.info(fmt::format(
         "mesh read and split by the first process (peak memory {:.0f} MB), a part sent to "
@@ -406,24 +436,7 @@ void Run::read_and_distribute() {
       wall_tags.push_back(tag);
   if (pieces_) {
     wall_ = distributed_wall(part, wall_tags, fc_);
-    fluid_piece_.tag_names = part.tag_names;
-    std::vector<int> at(part.points.size(), -1);
-    for (const Tet& t4 : part.tets) {
-      int least = t4[0];
-      for (int a : t4)
-        if (part.local_global[a] < part.local_global[least]) least = a;
-      if (least >= part.owned) continue;  // another process's
-      Tet cell = t4;
-      for (int& a : cell) {
-        if (at[a] < 0) {
-          at[a] = static_cast<int>(fluid_local_.size());
-          fluid_local_.push_back(a);
-          fluid_piece_.points.push_back(part.points[a]);
-        }
-        a = at[a];
-      }
-      fluid_piece_.tets.push_back(cell);
-    }
+    fluid_ = own_fluid_piece(part);
   } else {
     wall_ = whole_wall(mesh_, wall_tags, fc_);
   }
@@ -447,7 +460,7 @@ std::vector<Vec3> Run::wall_stress() const {
 }
 
 void Run::describe_partition() {
-  if (writer_) std::filesystem::create_directories(output_dir_);
+  if (writer_) std::filesystem::create_directories(output_dir_ + (pieces_ ? "/pieces" : ""));
   const PartitionReport partition = ns_->partition();
   reporter_.info(fmt::format("assembly: {} thread{} a process", partition.threads,
                              partition.threads > 1 ? "s" : ""));
@@ -492,8 +505,6 @@ void Run::open_logs() {
   for (const BoundaryCondition& b : fc_.boundaries)
     if (b.type != BoundaryType::wall) end_tags_.push_back(b.tag);
   end_texts_ = end_logs(log_header_, end_tags_);
-  if (pieces_ && writer_) std::filesystem::create_directories(output_dir_ + "/pieces");
-  window_start_ = fc_.period > 0.0 && fc_.period < fc_.end ? fc_.end - fc_.period : 0.0;
 }
 
 void Run::log_line(const std::string& line) {
@@ -649,13 +660,13 @@ void Run::save(double time, const std::vector<Vec3>* computed, bool with_fluid) 
           }
           const std::vector<Vec3>& u = ns_->local_velocity();
           const std::vector<double> p = ns_->local_pressure();
-          std::vector<Vec3> velocity(fluid_local_.size());
-          std::vector<double> pressure(fluid_local_.size());
-          for (size_t k = 0; k < fluid_local_.size(); ++k) {
-            velocity[k] = u[fluid_local_[k]];
-            pressure[k] = p[fluid_local_[k]];
+          std::vector<Vec3> velocity(fluid_.local.size());
+          std::vector<double> pressure(fluid_.local.size());
+          for (size_t k = 0; k < fluid_.local.size(); ++k) {
+            velocity[k] = u[fluid_.local[k]];
+            pressure[k] = p[fluid_.local[k]];
           }
-          io::write_vtu(path, fluid_piece_,
+          io::write_vtu(path, fluid_.mesh,
                         {Field::vector("velocity", velocity), Field::scalar("pressure", pressure)});
         });
     fluid_files_.emplace_back(time, fluid_file);
@@ -671,6 +682,11 @@ void Run::save(double time, const std::vector<Vec3>* computed, bool with_fluid) 
       });
   wall_files_.emplace_back(time, wall_file);
   summary_.saved += 1;
+  write_series();
+}
+
+// fluid.pvd, wall.pvd and the logs as they stand (the writing process only).
+void Run::write_series() const {
   if (!writer_) return;
   io::write_text(output_dir_ + "/fluid.pvd", pvd(fluid_files_, units_));
   io::write_text(output_dir_ + "/wall.pvd", pvd(wall_files_, units_));
@@ -695,8 +711,8 @@ void Run::log_step(const StepReport& r) {
 void Run::write_checkpoint_now() {
   FlowState own = ns_->own_state();
   write_checkpoint_piece(checkpoint_piece_path(checkpoint_path_, own.steps, rank_), own);
-  auto gathered = gather_indices(indices_.state(),
-                                 wall_.mesh_point);  // on the first once every piece is written
+  // The indices, on the first once every piece is written.
+  auto gathered = gather_indices(indices_.state(), wall_.mesh_point);
   if (!writer_) return;
   Checkpoint c;
   c.fingerprint = fingerprint_;
@@ -754,11 +770,7 @@ void Run::restore_checkpoint() {
   fluid_files_ = c.fluid_files;
   wall_files_ = c.wall_files;
   indices_.restore(indices_at(c.indices, c.index_points, wall_.mesh_point, checkpoint_path_));
-  if (writer_) {  // the folder as it was at the checkpoint (later saves are written again)
-    io::write_text(output_dir_ + "/fluid.pvd", pvd(fluid_files_, units_));
-    io::write_text(output_dir_ + "/wall.pvd", pvd(wall_files_, units_));
-    write_logs();
-  }
+  write_series();  // the folder as it was at the checkpoint (later saves are written again)
   reporter_.info(fmt::format("restart from {}: step {}, t = {:g} s", checkpoint_path_, c.flow.steps,
                              c.flow.time));
 }
