@@ -57,6 +57,8 @@ Json quality_json(const volume::VolumeQuality& q) {
                  {"median", round_to(q.median_dihedral, 4)},
                  {"max", round_to(q.max_dihedral, 4)},
                  {"min_layer", q.min_dihedral_layer >= 0 ? Json(round_to(q.min_dihedral_layer, 4)) : Json(nullptr)},
+                 {"min_layer_frame",
+                  q.min_dihedral_layer_frame >= 0 ? Json(round_to(q.min_dihedral_layer_frame, 4)) : Json(nullptr)},
                  {"min_interior", q.min_dihedral_interior >= 0 ? Json(round_to(q.min_dihedral_interior, 4)) : Json(nullptr)}}},
                {"worst_scaled_jacobian", round_to(q.worst_scaled_jacobian, 4)},
                {"worst_aspect_ratio", round_to(q.worst_aspect_ratio, 4)}};
@@ -82,7 +84,11 @@ std::string quality_text(const volume::VolumeQuality& q) {
       q.points, q.tets, q.prisms, tags, q.inverted,
       q.closed ? "closed" : fmt::format("OPEN ({} faces untagged, {} stray triangles)", q.open_faces, q.stray_triangles),
       q.min_dihedral, q.median_dihedral, q.max_dihedral);
-  if (q.min_dihedral_layer >= 0) text += fmt::format(" (layer {:.2f}, interior {:.2f})", q.min_dihedral_layer, q.min_dihedral_interior);
+  if (q.min_dihedral_layer >= 0) {
+    text += fmt::format(" (layer {:.2f}", q.min_dihedral_layer);
+    if (q.min_dihedral_layer_frame >= 0) text += fmt::format(", {:.2f} in the layer's frame", q.min_dihedral_layer_frame);
+    text += fmt::format(", interior {:.2f})", q.min_dihedral_interior);
+  }
   text += fmt::format("; worst scaled Jacobian {:.3f}, worst aspect ratio {:.2f}", q.worst_scaled_jacobian, q.worst_aspect_ratio);
   if (q.has_layers) {
     text += fmt::format("; layers per wall triangle {}..{}", q.min_layers, q.max_layers);

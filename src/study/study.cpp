@@ -556,6 +556,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       run.min_dihedral = j["min_dihedral"];
       run.min_dihedral_layer = j.value("min_dihedral_layer", -1.0);
       run.min_dihedral_interior = j.value("min_dihedral_interior", -1.0);
+      run.min_dihedral_layer_frame = j.value("min_dihedral_layer_frame", -1.0);
       run.interior_size = j.value("interior_size", config.interior.factor);
       run.target_triangles = j.value("target_triangles", run.target_triangles);
       run.layers = j.value("layers", config.layers);
@@ -640,6 +641,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       run.min_dihedral = quality.min_dihedral;
       run.min_dihedral_layer = quality.min_dihedral_layer;
       run.min_dihedral_interior = quality.min_dihedral_interior;
+      run.min_dihedral_layer_frame = quality.min_dihedral_layer_frame;
       run.interior_size = volume_mesh.report.interior_factor;
       run.layers = layer_design.layers;
       run.layer_growth = layer_design.growth;
@@ -654,6 +656,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
                 {"min_dihedral", run.min_dihedral},
                 {"min_dihedral_layer", run.min_dihedral_layer},
                 {"min_dihedral_interior", run.min_dihedral_interior},
+                {"min_dihedral_layer_frame", run.min_dihedral_layer_frame},
                 {"interior_size", run.interior_size},
                 {"target_triangles", run.target_triangles},
                 {"layers", run.layers},

@@ -126,6 +126,8 @@ struct MeshRun {
   // Degrees: the boundary layer's cells' and the interior's apart (-1: none, or a stamp from before
   // they were kept).
   double min_dihedral_layer = -1.0, min_dihedral_interior = -1.0;
+  // Degrees: the layer's cells in the layer's own frame (volume::VolumeQuality's; -1: not measured).
+  double min_dihedral_layer_frame = -1.0;
   double interior_size = 1.0;  // the interior's size factor its volume was made with
   std::map<std::string, double> seconds = {};  // remesh, volume, flow (those of the run that made them)
   bool reused = false;                         // loaded from an earlier run

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <limits>
@@ -25,6 +26,32 @@ double aspect_ratio(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) 
 
 }  // namespace
 
+double layer_frame_angle(const TetMesh& m, int column, const Tet& t) {
+  const Triangle& f = m.boundary[column];
+  const Vec3 &a = m.points[f[0]], e1 = m.points[f[1]] - a, e2 = m.points[f[2]] - a;
+  const Vec3 normal = e1.cross(e2).normalized();
+  // In-plane coordinates (s, t) along the wall triangle's edges, w along its normal.
+  const double g11 = e1.dot(e1), g12 = e1.dot(e2), g22 = e2.dot(e2), det = g11 * g22 - g12 * g12;
+  if (!(det > 0) || !std::isfinite(det)) return 0.0;
+  std::array<Vec3, 4> local;
+  for (int k = 0; k < 4; ++k) {
+    const Vec3 d = m.points[t[k]] - a;
+    const double d1 = d.dot(e1), d2 = d.dot(e2);
+    local[k] = Vec3((g22 * d1 - g12 * d2) / det, (g11 * d2 - g12 * d1) / det, d.dot(normal));
+  }
+  const auto [low, high] = std::minmax_element(local.begin(), local.end(),
+                                               [](const Vec3& p, const Vec3& q) { return p.z() < q.z(); });
+  const double height = high->z() - low->z();
+  if (!(height > 0)) return 0.0;
+  // The wall triangle onto the equilateral one of side 1, the cell's height onto 1.
+  const Vec3 side1(1.0, 0.0, 0.0), side2(0.5, std::sqrt(3.0) / 2.0, 0.0), up(0.0, 0.0, 1.0);
+  std::array<Vec3, 4> p;
+  for (int k = 0; k < 4; ++k) p[k] = local[k].x() * side1 + local[k].y() * side2 + (local[k].z() / height) * up;
+  double least = 180.0;
+  for (double angle : mesh::dihedral_angles(p[0], p[1], p[2], p[3])) least = std::min(least, angle * 180.0 / std::numbers::pi);
+  return least;
+}
+
 VolumeQuality measure_volume(const TetMesh& m, const std::vector<double>& radius) {
   VolumeQuality q;
   q.points = m.num_points();
@@ -38,13 +65,15 @@ VolumeQuality measure_volume(const TetMesh& m, const std::vector<double>& radius
 
   // Every cell as tetrahedra (prisms by their split), with its layer (-1: unknown).
   const std::vector<Tet> all = mesh::all_tetrahedra(m);
-  std::vector<int> layer(all.size(), -1);
+  std::vector<int> layer(all.size(), -1), column(all.size(), -1);
   for (int t = 0; t < m.num_tets() && !m.tet_layer.empty(); ++t) layer[t] = m.tet_layer[t];
+  for (int t = 0; t < m.num_tets() && !m.tet_column.empty(); ++t) column[t] = m.tet_column[t];
   for (int p = 0; p < m.num_prisms(); ++p) {
     bool inverted = false;
     for (int k = 0; k < 3; ++k) {
       const size_t i = m.tets.size() + 3 * p + k;
       layer[i] = m.prism_layer.empty() ? 1 : m.prism_layer[p];
+      if (!m.prism_column.empty()) column[i] = m.prism_column[p];
       if (!(mesh::tet_volume6(m, all[i]) > 0)) inverted = true;
     }
     if (inverted) ++q.inverted;
@@ -53,7 +82,7 @@ VolumeQuality measure_volume(const TetMesh& m, const std::vector<double>& radius
   angles.reserve(6 * all.size());
   q.worst_scaled_jacobian = 1.0;
   q.worst_aspect_ratio = 1.0;
-  double min_layer = 1e300, min_interior = 1e300;
+  double min_layer = 1e300, min_interior = 1e300, min_layer_frame = 1e300;
   for (size_t i = 0; i < all.size(); ++i) {
     const Tet& t = all[i];
     const Vec3 &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]], &d = m.points[t[3]];
@@ -64,6 +93,8 @@ VolumeQuality measure_volume(const TetMesh& m, const std::vector<double>& radius
       least = std::min(least, angles.back());
     }
     if (layer[i] > 0) min_layer = std::min(min_layer, least);
+    if (layer[i] > 0 && column[i] >= 0 && column[i] < static_cast<int>(m.boundary.size()))
+      min_layer_frame = std::min(min_layer_frame, layer_frame_angle(m, column[i], t));
     if (layer[i] == 0) min_interior = std::min(min_interior, least);
     q.worst_scaled_jacobian = std::min(q.worst_scaled_jacobian, mesh::scaled_jacobian(a, b, c, d));
     q.worst_aspect_ratio = std::max(q.worst_aspect_ratio, aspect_ratio(a, b, c, d));
@@ -76,6 +107,7 @@ VolumeQuality measure_volume(const TetMesh& m, const std::vector<double>& radius
     q.median_dihedral = angles[angles.size() / 2];
   }
   if (min_layer < 1e300) q.min_dihedral_layer = min_layer;
+  if (min_layer_frame < 1e300) q.min_dihedral_layer_frame = min_layer_frame;
   if (min_interior < 1e300) q.min_dihedral_interior = min_interior;
 
   const mesh::BoundaryClosure closure = mesh::boundary_closure(m, all);

@@ -19,6 +19,15 @@ struct VolumeQuality {
   // Degrees; over all cells, then the layer's and the interior's (-1 when there are none).
   double min_dihedral = 0, median_dihedral = 0, max_dihedral = 0;
   double min_dihedral_layer = -1, min_dihedral_interior = -1;
+  // The layer's cells are flat by design (their least angle about atan(height / wall edge),
+  // whatever the cut) and stand on the wall's triangles (an anisotropic wall's stretched by
+  // design: the surface's own angles). In the layer's own frame, each cell mapped by the affine map
+  // that takes its column's wall triangle to the equilateral one and its height to that triangle's
+  // side, a column extruded straight and cut well is the unit prism's three tetrahedra (least
+  // angle atan(sqrt(3) / 2) = 40.9 deg); a small angle there is what the layer made: a cut gone
+  // wrong (a sliver or a needle across the column) or a column bent, twisted or pinched. Degrees;
+  // -1 without columns.
+  double min_dihedral_layer_frame = -1;
   double worst_scaled_jacobian = 0;
   double worst_aspect_ratio = 0;  // longest edge / (2 sqrt(6) x inradius): 1 for the regular tetrahedron
   bool closed = false;            // the tagged triangles are exactly the faces of one cell, outward
@@ -30,6 +39,11 @@ struct VolumeQuality {
   // Layer thickness over the local radius, per wall triangle (needs `radius`).
   double min_thickness_ratio = -1, max_thickness_ratio = -1;
 };
+
+// The least dihedral angle (degrees) of tetrahedron `t` in the frame of the layer column standing
+// on boundary triangle `column` (above); 0 when the cell has no height along the wall's normal or
+// the wall triangle no area.
+double layer_frame_angle(const TetMesh& mesh, int column, const Tet& t);
 
 // `radius` (optional): per point, the local radius of the wall below layer points.
 VolumeQuality measure_volume(const TetMesh& mesh, const std::vector<double>& radius = {});

@@ -507,6 +507,10 @@ TEST(Cli, VolumeWritesTaggedMeshesThatQualityReadsBack) {
                               "0", "--json"});
   ASSERT_EQ(thin.code, 0) << thin.err;
   EXPECT_LT(thin.json()["dihedral_deg"]["min_layer"].get<double>(), 5.0);
+  // The same flat cells in the layer's own frame (volume/quality.h): a pipe's straight columns, cut
+  // well, are near the unit prism's 40.9 degrees.
+  EXPECT_GT(thin.json()["dihedral_deg"]["min_layer_frame"].get<double>(), 20.0);
+  EXPECT_LE(thin.json()["dihedral_deg"]["min_layer_frame"].get<double>(), 45.0);
   EXPECT_NEAR(thin.json()["boundary_layer"]["thickness_over_radius_max"].get<double>(), 0.1, 0.01);
   const RunResult grown = run({"volume", tmp.path("p.stl"), "-o", tmp.path("l.msh"), "--layers", "10", "--json"});
   ASSERT_EQ(grown.code, 0) << grown.err;

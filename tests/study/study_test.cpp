@@ -357,22 +357,31 @@ point = [0, 3, 0]
   EXPECT_NE(md.find("## Table 1: the meshes"), std::string::npos);
   EXPECT_NE(md.find("| curvature | compared | 4000 |"), std::string::npos) << md.substr(0, 1500);
   // Table 1's least dihedral angles, the layer's and the interior's apart (issue 49), each the
-  // least of its cells (so the whole mesh's is the smaller of the two), and a sentence on the bounds.
-  EXPECT_NE(md.find("least dihedral, layer (deg) | least dihedral, interior (deg) |"), std::string::npos);
+  // least of its cells (so the whole mesh's is the smaller of the two), the layer's also in its own
+  // frame (its flat cells round there: rounder than raw), and a sentence on the bounds that judges
+  // the layer in its frame.
+  EXPECT_NE(md.find("least dihedral, layer (deg) | least dihedral, layer in its frame (deg) | least dihedral, "
+                    "interior (deg) |"),
+            std::string::npos);
+  bool bounds_met = true;
   for (const MeshRun& m : r.meshes) {
     ASSERT_GT(m.min_dihedral_layer, 0.0) << m.name;
     ASSERT_GT(m.min_dihedral_interior, 0.0) << m.name;
+    EXPECT_GT(m.min_dihedral_layer_frame, m.min_dihedral_layer) << m.name;
     EXPECT_DOUBLE_EQ(std::min(m.min_dihedral_layer, m.min_dihedral_interior), m.min_dihedral) << m.name;
+    bounds_met = bounds_met && m.min_dihedral_layer_frame >= 5.0 && m.min_dihedral_interior >= 10.0;
   }
-  EXPECT_TRUE(md.find("The least dihedral angles meet the bounds") != std::string::npos ||
-              md.find("Below the bounds asked of the meshes (at least 5 degrees in the boundary layer and 10 "
-                      "inside): ") != std::string::npos);
+  EXPECT_NE(md.find(bounds_met ? "The least dihedral angles meet the bounds asked of the meshes: at least 5 degrees "
+                                 "in the boundary layer, its cells measured in the layer's own frame"
+                               : "Below the bounds asked of the meshes (at least 5 degrees in the boundary layer, "),
+            std::string::npos);
   const std::string html = io::read_file(tmp.path("out/report.html"));
   EXPECT_NE(html.find("<svg"), std::string::npos);  // pictures inline
   const nlohmann::json j = nlohmann::json::parse(io::read_file(tmp.path("out/study.json")));
   EXPECT_EQ(j["differences"].size(), 2u * 2u + 2u);  // 2 rings x 2 meshes, 1 point x 2 meshes
   EXPECT_DOUBLE_EQ(j["meshes"][1]["min_dihedral_layer_deg"].get<double>(), r.meshes[1].min_dihedral_layer);
   EXPECT_DOUBLE_EQ(j["meshes"][1]["min_dihedral_interior_deg"].get<double>(), r.meshes[1].min_dihedral_interior);
+  EXPECT_DOUBLE_EQ(j["meshes"][1]["min_dihedral_layer_frame_deg"].get<double>(), r.meshes[1].min_dihedral_layer_frame);
   // Two uniform meshes only (the compared one and level 1): no grid convergence, said.
   EXPECT_NE(md.find("Not estimated: it needs three uniform meshes"), std::string::npos);
   EXPECT_TRUE(j["grid_convergence"].empty());
@@ -409,6 +418,7 @@ point = [0, 3, 0]
     EXPECT_TRUE(again.meshes[m].reused) << again.meshes[m].name;
     EXPECT_EQ(again.meshes[m].surface_triangles, r.meshes[m].surface_triangles);
     EXPECT_DOUBLE_EQ(again.meshes[m].min_dihedral_layer, r.meshes[m].min_dihedral_layer);  // kept in the stamp
+    EXPECT_DOUBLE_EQ(again.meshes[m].min_dihedral_layer_frame, r.meshes[m].min_dihedral_layer_frame);
     EXPECT_DOUBLE_EQ(least(static_cast<int>(m), 0),
                      again.meshes[m].rings[0].samples[again.meshes[m].rings[0].minimum].magnitude);
   }
