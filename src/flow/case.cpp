@@ -200,7 +200,7 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
   if (time)
     r.known_keys(*time.as_table(), "time",
                  {"steady", "dt", "end", "cycles", "period", "save_every", "picard", "steady_tolerance",
-                  "steady_iterations", "steady_method", "initial"});
+                  "steady_iterations", "steady_method", "initial", "cfl_target"});
   c.steady = r.flag(time["steady"], "time.steady", false);
   c.steady_tolerance = r.number(time["steady_tolerance"], "time.steady_tolerance", c.steady_tolerance);
   c.steady_iterations = r.integer(time["steady_iterations"], "time.steady_iterations", c.steady_iterations, 1);
@@ -230,6 +230,12 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
       c.end = r.number(time["end"], "time.end", c.end);
     }
     c.save_every = r.integer(time["save_every"], "time.save_every", c.save_every, 1);
+    c.cfl_target = r.number(time["cfl_target"], "time.cfl_target", 0.0);
+    if (time["cfl_target"] && !(c.cfl_target > 0.0 && c.cfl_target <= 1000.0))
+      r.fail("time.cfl_target", fmt::format("{:g} is not a CFL number to aim at: give one above 0 (up to 1000)",
+                                            c.cfl_target));
+  } else if (time && time["cfl_target"]) {
+    r.fail("time.cfl_target", "a steady case has no time steps: leave it out, or set steady = false");
   }
 
   if (!root["boundary"] || !root["boundary"].is_array_of_tables())
@@ -265,10 +271,22 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
 
 FlowCase read_case(const std::string& path) { return parse_case(io::read_file(path), path); }
 
+double next_time_step(double dt, double max_cfl, double target) {
+  const double ratio = max_cfl > 0.0 ? target / max_cfl : kTimeStepGrowth;
+  return dt * std::clamp(ratio, 1.0 / kTimeStepShrink, kTimeStepGrowth);
+}
+
+double landing_time_step(double dt, double time, double end) {
+  const double left = end - time;
+  if (left <= dt * (1.0 + 1e-9)) return left;
+  return left < 2.0 * dt ? 0.5 * left : dt;
+}
+
 void divide_time_step(FlowCase& c, int divisor) {
   if (divisor < 1) throw OptionError(fmt::format("the time step's divisor must be at least 1 (found {})", divisor));
   if (c.steady) throw OptionError(fmt::format("{}: a steady case has no time step to divide", c.path));
   c.dt /= divisor;
+  c.cfl_target /= divisor;
   c.save_every *= divisor;
   c.checkpoint_every *= divisor;
   c.fluid_every *= divisor;

@@ -7,6 +7,9 @@
 //   [fluid]    density = 1060.0 (kg/m3), viscosity = 0.0035 (Pa s)
 //   [time]     steady = false; dt (s); end (s) or cycles with period (s); save_every (steps);
 //              period may come with end too: the wall shear stress indices cover the last period
+//              cfl_target = C (optional; where only the settled or periodic flow is wanted, not
+//              its history: the steps' length chosen for a largest CFL number of about C, dt the
+//              first's; Run::next_time_step)
 //   [[boundary]] tag = "inlet"; type = "velocity" | "traction" | "resistance" | "rcr" | "wall";
 //              profile = "parabolic" | "plug" | "womersley"; flow = 5.0 (mL/s) or waveform = "inlet.csv"
 //              (time s, flow mL/s, repeated with its period); scale = -1.0 (multiplies the flow:
@@ -88,6 +91,7 @@ struct FlowCase {
   bool steady = false;
   double dt = 1e-3, end = 1.0;
   double period = 0.0;  // s; 0 when not given. The hemodynamic indices cover the last period.
+  double cfl_target = 0.0;  // [time] cfl_target: > 0, the steps' length follows the CFL number
   int save_every = 10;
   int picard = 0;
   double steady_tolerance = 1e-6;
@@ -119,9 +123,21 @@ FlowCase read_case(const std::string& path);
 // The same from TOML text (`path` names it in messages and resolves the relative paths).
 FlowCase parse_case(const std::string& text, const std::string& path);
 
+// Where the case aims at a CFL number (FlowCase::cfl_target): the next step's length (s) from this
+// step's (`dt`) and its largest CFL number, dt x target / max_cfl, grown at most kTimeStepGrowth
+// times and shrunk at most kTimeStepShrink times a step (BDF2 of variable step is zero-stable for
+// ratios under 1 + sqrt 2; a flow at rest, max_cfl 0, grows by the most).
+inline constexpr double kTimeStepGrowth = 1.25, kTimeStepShrink = 4.0;
+double next_time_step(double dt, double max_cfl, double target);
+// The length of the step from `time` that does not step past `end`: `dt`, all that is left when
+// that is at most dt, half of it when it is under 2 dt (no sliver of a last step, none longer
+// than asked).
+double landing_time_step(double dt, double time, double end);
+
 // The case with its time step divided by `divisor` (> 1) and its step counts (save_every,
 // checkpoint_every, fluid_every) multiplied by it, so that it saves at the same times: a time-step
-// convergence check (the study's). OptionError for a divisor < 1 or a steady case.
+// convergence check (the study's); a CFL target divided too (steps chosen by it then as many times
+// shorter). OptionError for a divisor < 1 or a steady case.
 void divide_time_step(FlowCase& c, int divisor);
 
 // Checks the case's tags against the mesh's: a tag of the case absent from the mesh, or a tag

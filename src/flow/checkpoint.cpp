@@ -14,7 +14,8 @@ namespace vesselmesh::flow {
 namespace {
 
 constexpr char kMagic[] = "vesselmesh checkpoint\n";
-constexpr uint32_t kVersion = 4;  // 2: the rcr ends' capacitor pressures; 3: the indices' mesh points; 4: pieces
+// 2: the rcr ends' capacitor pressures; 3: the indices' mesh points; 4: pieces; 5: the steps' lengths
+constexpr uint32_t kVersion = 5;
 
 constexpr char kPieceMagic[] = "vesselmesh checkpoint piece\n";
 
@@ -97,6 +98,8 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   w.vector(s.change);
   w.vector(c.index_points);
   w.value(c.pieces);
+  w.value(c.flow.time_step);
+  w.value(c.flow.last_time_step);
   io::write_text(path, w.text());
 }
 
@@ -130,6 +133,8 @@ Checkpoint read_checkpoint(const std::string& path) {
   s.change = r.vector<double>();
   c.index_points = r.vector<int>();
   c.pieces = r.value<int>();
+  c.flow.time_step = r.value<double>();
+  c.flow.last_time_step = r.value<double>();
   if (c.index_points.size() != s.last.size())
     throw InputError(fmt::format("{}: the checkpoint's indices do not fit their points: not one of ours", path));
   if (!r.done()) throw InputError(fmt::format("{}: the checkpoint has bytes past its end: not one of ours", path));
@@ -159,6 +164,8 @@ FlowState read_checkpoint_pieces(const std::string& path, const Checkpoint& c, c
   FlowState flow;
   flow.time = c.flow.time;
   flow.steps = c.flow.steps;
+  flow.time_step = c.flow.time_step;
+  flow.last_time_step = c.flow.last_time_step;
   flow.capacitor_pressure = c.flow.capacitor_pressure;
   std::vector<char> found(wanted.size(), 0);
   for (int k = 0; k < c.pieces; ++k) {

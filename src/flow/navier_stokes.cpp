@@ -344,7 +344,16 @@ void NavierStokes::set_state(const std::vector<Vec3>& velocity, double time) {
   s.published = false;
   s.t = time;
   s.step_count = 0;
+  s.dt_last = 0.0;
 }
+
+void NavierStokes::set_time_step(double dt) {
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    throw OptionError(fmt::format("the time step must be a positive length of time in s (found {:g})", dt));
+  impl_->dt_next = dt;
+}
+
+double NavierStokes::time_step() const { return impl_->dt_next > 0.0 ? impl_->dt_next : impl_->fc.dt; }
 
 FlowState NavierStokes::gathered_state() const {
   const Impl& s = *impl_;
@@ -376,6 +385,8 @@ FlowState NavierStokes::own_state() const {
   FlowState out;
   out.time = s.t;
   out.steps = s.step_count;
+  out.time_step = s.dt_next;
+  out.last_time_step = s.dt_last;
   out.capacitor_pressure = s.capacitor_pressure;
   out.points.assign(s.mesh_point.begin(), s.mesh_point.begin() + s.owned);
   out.velocity.assign(s.u.begin(), s.u.begin() + s.owned);
@@ -418,6 +429,8 @@ void NavierStokes::restore(const FlowState& state) {
   }
   s.t = state.time;
   s.step_count = state.steps;
+  s.dt_next = state.time_step;
+  s.dt_last = state.last_time_step;
   s.published = false;
 }
 

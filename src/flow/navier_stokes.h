@@ -1,5 +1,6 @@
 // Incompressible Navier-Stokes on a tetrahedral mesh: P1-P1 finite elements with residual-based
-// stabilization (SUPG/PSPG and LSIC), BDF2 in time (BDF1 on the first step), a semi-implicit
+// stabilization (SUPG/PSPG and LSIC), BDF2 in time (BDF1 on the first step; of variable step
+// where the steps' length changes, set_time_step), a semi-implicit
 // Oseen linearization (the advecting velocity extrapolated from the last two steps, optional
 // Picard iterations) and one PETSc solve per step; a steady solve by Picard iterations from
 // Stokes.
@@ -54,10 +55,12 @@ struct BoundaryFlow {
 
 // What the time stepping needs to go on (a checkpoint): per mesh point the velocity at the last
 // two steps (m/s) and the pressure over the density (m2/s2, as the solver holds it), the time
-// (s) and the steps taken (the first step is BDF1).
+// (s) and the steps taken (the first step is BDF1), the next step's length and the last one's (s;
+// 0: the case's dt).
 struct FlowState {
   double time = 0.0;
   int steps = 0;
+  double time_step = 0.0, last_time_step = 0.0;
   std::vector<Vec3> velocity, previous;
   std::vector<double> kinematic_pressure;
   std::vector<double> capacitor_pressure;  // per boundary of the case: an rcr end's P_c (Pa), else 0
@@ -77,6 +80,7 @@ struct PartitionReport {
 struct StepReport {
   int step = 0;  // steps taken so far (0 before the first)
   double time = 0.0;
+  double time_step = 0.0;  // s, the step's length (time steps)
   int linear_iterations = 0;  // all solves of the step
   int solves = 0;
   double max_cfl = 0.0;  // max |u| dt / h over the elements (h: the element's least height)
@@ -103,6 +107,17 @@ struct SteadyIteration {
   int linear_iterations = 0;
 };
 
+// A time step's BDF weights: du/dt at the new time ~ (current u^(n+1) - now u^n + before u^(n-1)) / dt,
+// the convecting velocity extrapolated to it as convect_now u^n - convect_before u^(n-1). The first
+// step BDF1 (1, 1, 0; u^n); then BDF2 of variable step, ratio w = dt_n / dt_(n-1): (1 + 2w) /
+// (1 + w), 1 + w, w^2 / (1 + w); 1 + w, w (with w = 1: 3/2, 2, 1/2; 2, 1): exact for quadratics in
+// time, the extrapolation for linear ones; zero-stable for w < 1 + sqrt 2.
+struct BdfWeights {
+  double current = 1.0, now = 1.0, before = 0.0;
+  double convect_now = 1.0, convect_before = 0.0;
+};
+BdfWeights bdf_weights(bool first, double ratio);
+
 class NavierStokes {
  public:
   // Checks the case's tags against the mesh's (check_tags) and builds everything a step needs,
@@ -112,9 +127,14 @@ class NavierStokes {
   NavierStokes(const TetMesh& mesh, const FlowCase& flow_case, const Reporter& reporter = silent_reporter());
   ~NavierStokes();
 
-  // One time step (unsteady cases). A diverging step is a ComputationError naming
+  // One time step (unsteady cases), of time_step(). A diverging step is a ComputationError naming
   // the step and the likely cause (CFL, backflow).
   StepReport step();
+  // The next step's length (s): the case's dt until set. Where it differs from the last step's,
+  // the step is BDF2 of variable step (bdf_weights). OptionError for a length that is not positive
+  // and finite.
+  void set_time_step(double dt);
+  double time_step() const;
   // The steady flow by the case's steady_method: Newton's (the default, last below), or Picard
   // iterations from Stokes until the relative change is below the case's tolerance, or pseudo time steps.
   // With the case's pseudo_transient: from Stokes, backward-Euler pseudo time steps, the first

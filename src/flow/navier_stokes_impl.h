@@ -142,6 +142,7 @@ struct NavierStokes::Impl {
   // State, per local point.
   double t = 0.0;
   int step_count = 0;
+  double dt_next = 0.0, dt_last = 0.0;  // s: the next step's length and the last one's (0: fc.dt)
   std::vector<Vec3> u, u_old;  // u^n, u^{n-1}
   std::vector<double> p;       // kinematic pressure p / rho
   std::vector<double> rhs, x, dirichlet;

@@ -86,24 +86,32 @@ void NavierStokes::Impl::check_finite(const StepReport& report) const {
                                      report.step, report.time, report.max_cfl));
 }
 
+BdfWeights bdf_weights(bool first, double ratio) {
+  if (first) return {};
+  const double w = ratio;
+  return {(1.0 + 2.0 * w) / (1.0 + w), 1.0 + w, w * w / (1.0 + w), 1.0 + w, w};
+}
+
 StepReport NavierStokes::step() {
   Impl& s = *impl_;
   VM_CHECK(!s.fc.steady, "step() on a steady case");
   const auto start = Clock::now();
   StepReport report;
   report.step = s.step_count + 1;
-  const double dt = s.fc.dt;
+  const double dt = time_step();
   const double t_next = s.t + dt;
   const bool first = s.step_count == 0;
-  const double alpha0 = first ? 1.0 : 1.5;
+  const BdfWeights bdf = bdf_weights(first, dt / (s.dt_last > 0.0 ? s.dt_last : s.fc.dt));
+  const double alpha0 = bdf.current;
   std::vector<Vec3> history(s.n()), advect(s.n());
   for (int a = 0; a < s.n(); ++a) {
-    history[a] = (first ? s.u[a] : Vec3(2.0 * s.u[a] - 0.5 * s.u_old[a])) / dt;
-    advect[a] = first ? s.u[a] : Vec3(2.0 * s.u[a] - s.u_old[a]);
+    history[a] = (first ? s.u[a] : Vec3(bdf.now * s.u[a] - bdf.before * s.u_old[a])) / dt;
+    advect[a] = first ? s.u[a] : Vec3(bdf.convect_now * s.u[a] - bdf.convect_before * s.u_old[a]);
   }
   s.update_resistance(dt);
   s.set_dirichlet(t_next);
   report.time = t_next;
+  report.time_step = dt;
 
   std::vector<Vec3> next = s.u;
   std::vector<double> next_p = s.p;
@@ -124,6 +132,7 @@ StepReport NavierStokes::step() {
   s.settle_capacitors();
   s.t = t_next;
   s.step_count += 1;
+  s.dt_last = dt;
   s.published = false;
   report.seconds = seconds_since(start);
   s.check_finite(report);

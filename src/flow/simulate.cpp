@@ -4,6 +4,7 @@
 #include "flow/navier_stokes.h"
 #include "io/atomic_file.h"
 #include "io/msh.h"
+#include "io/process.h"
 #include "io/volume_file.h"
 #include "io/vtk_formats.h"
 #include "mesh/error.h"
@@ -14,15 +15,12 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <optional>
 
@@ -64,25 +62,6 @@ TetMesh read_mesh(const FlowCase& c) {
   throw InputError(fmt::format("{}: mesh \"{}\": a volume mesh is read from .msh (Gmsh) or .vtu (with cell data "
                                "`tag`), as `vesselmesh volume` writes them",
                                c.path, c.mesh));
-}
-
-// This process's peak resident memory so far (MB).
-double peak_memory_mb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;
-}
-
-// This process's resident pages of mapped files (MB; /proc/self/status RssFile, 0 where there is
-// none): the shared libraries' code and constants, mapped once at the start and shared by every
-// process of a node (about 57 MB here: PETSc and its solvers, MPI, VTK, Gmsh). The peak less it is
-// the memory the process holds of its own.
-double file_memory_mb() {
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line))
-    if (line.rfind("RssFile:", 0) == 0) return std::strtod(line.c_str() + 8, nullptr) / 1024.0;
-  return 0.0;
 }
 
 // The wall whose shear stress this process computes and writes, and how its points lead back to
@@ -419,7 +398,7 @@ void Run::read_and_distribute() {
                                   pieces_ ? wall_names : std::vector<std::string>{});
   if (pieces_) mesh_ = TetMesh{};  // the parts hold it now
   // The first process's peak: the whole mesh read and split.
-  summary_.distribution_memory_mb = peak_memory_mb();
+  summary_.distribution_memory_mb = io::peak_memory_mb();
   if (pieces_)
     reporter_.info(fmt::format(
         "mesh read and split by the first process (peak memory {:.0f} MB), a part sent to "
@@ -487,8 +466,8 @@ void Run::describe_partition() {
 
 // Every process's peak resident memory (MB), gathered (every process calls it).
 void Run::gather_memory() {
-  summary_.peak_memory_mb = parallel::gather_all(peak_memory_mb());
-  summary_.library_memory_mb = parallel::gather_all(file_memory_mb());
+  summary_.peak_memory_mb = parallel::gather_all(io::peak_memory_mb());
+  summary_.library_memory_mb = parallel::gather_all(io::file_memory_mb());
   summary_.own_memory_mb.resize(summary_.peak_memory_mb.size());
   for (size_t r = 0; r < summary_.own_memory_mb.size(); ++r)
     summary_.own_memory_mb[r] = summary_.peak_memory_mb[r] - summary_.library_memory_mb[r];
@@ -596,6 +575,11 @@ void Run::write_summary() const {
     j["settled_step_seconds"] = summary_.settled_step_seconds;
     j["settled_seconds_per_step_per_million_dofs"] =
         summary_.per_million_dofs(summary_.settled_step_seconds);
+    if (fc_.cfl_target > 0.0)
+      j["time_steps"] = {{"cfl_target", fc_.cfl_target},
+                         {"least_s", summary_.least_time_step},
+                         {"largest_s", summary_.largest_time_step},
+                         {"simulated_s", summary_.simulated_seconds}};
   }
   j["solver"] = summary_.solver;
   j["petsc_options"] = fc_.petsc_options;
@@ -718,6 +702,8 @@ void Run::write_checkpoint_now() {
   c.fingerprint = fingerprint_;
   c.flow.time = own.time;
   c.flow.steps = own.steps;
+  c.flow.time_step = own.time_step;
+  c.flow.last_time_step = own.last_time_step;
   c.flow.capacitor_pressure = own.capacitor_pressure;
   c.pieces = ranks_;
   c.saved = summary_.saved;
@@ -798,9 +784,16 @@ void Run::run_steady() {
 }
 
 bool Run::run_time_steps() {
+  // Steps of the case's dt, or (cfl_target) of lengths chosen as the flow goes, the last landing
+  // on the end.
+  const bool chosen = fc_.cfl_target > 0.0;
   const int steps = static_cast<int>(std::ceil(fc_.end / fc_.dt - 1e-9));
-  reporter_.info(fmt::format("{} steps of {:g} s to t = {:g} s, {} dofs", steps, fc_.dt, fc_.end,
-                             ns_->dofs()));
+  const double end_tolerance = 1e-9 * fc_.dt;
+  if (chosen)
+    reporter_.info(fmt::format("steps for a largest CFL number of about {:g} (the first {:g} s) to t = {:g} s, {} dofs",
+                               fc_.cfl_target, ns_->time_step(), fc_.end, ns_->dofs()));
+  else
+    reporter_.info(fmt::format("{} steps of {:g} s to t = {:g} s, {} dofs", steps, fc_.dt, fc_.end, ns_->dofs()));
   if (fc_.stokes_start && !restart_) {
     const StepReport r = ns_->start_from_stokes();
     reporter_.info(
@@ -808,16 +801,24 @@ bool Run::run_time_steps() {
                     r.time, r.linear_iterations, r.seconds));
     summary_.initial_seconds = r.seconds;
   }
-  if (first_step_ >= steps)
+  const double start_time = ns_->time();
+  if (chosen ? start_time >= fc_.end - end_tolerance : first_step_ >= steps)
     reporter_.warning(fmt::format(
-        "the checkpoint is at step {}, the case ends at step {}: nothing to do (a later "
+        "the checkpoint is at step {} (t = {:g} s), the case ends at t = {:g} s: nothing to do (a later "
         "[time] end extends the run)",
-        first_step_, steps));
+        first_step_, start_time, fc_.end));
   const StopSignals signals;
-  for (int k = first_step_; k < steps; ++k) {
+  for (int k = first_step_; chosen ? ns_->time() < fc_.end - end_tolerance : k < steps; ++k) {
+    if (chosen) ns_->set_time_step(landing_time_step(ns_->time_step(), ns_->time(), fc_.end));
     const StepReport r = ns_->step();
+    const bool last = chosen ? r.time >= fc_.end - end_tolerance : k + 1 == steps;
+    if (chosen) ns_->set_time_step(next_time_step(r.time_step, r.max_cfl, fc_.cfl_target));
     summary_.steps = r.step;
     summary_.linear_iterations += r.linear_iterations;
+    summary_.least_time_step =
+        k == first_step_ ? r.time_step : std::min(summary_.least_time_step, r.time_step);
+    summary_.largest_time_step = std::max(summary_.largest_time_step, r.time_step);
+    summary_.simulated_seconds = r.time - start_time;
     log_step(r);
     if (k == 0) summary_.solver = ns_->solver_description();
     if (k == first_step_) {
@@ -828,17 +829,17 @@ bool Run::run_time_steps() {
       ++summary_.settled_steps;
     }
     std::vector<Vec3> tau;
-    const bool in_window = r.time >= window_start_ - 0.5 * fc_.dt;
+    const bool in_window = r.time >= window_start_ - 0.5 * r.time_step;
     if (in_window) {
       tau = wall_stress();
       indices_.add(r.time, tau);
     }
-    if (r.step % fc_.save_every == 0 || k + 1 == steps)
+    if (r.step % fc_.save_every == 0 || last)
       save(r.time, in_window ? &tau : nullptr,
-           k + 1 == steps || (fc_.fluid_every > 0 && r.step % fc_.fluid_every == 0));
+           last || (fc_.fluid_every > 0 && r.step % fc_.fluid_every == 0));
     // Every process stops at the same step (a signal may reach them apart).
     const bool stop = parallel::any_process(stop_signal != 0);
-    if (stop || k + 1 == steps || (fc_.checkpoint_every > 0 && r.step % fc_.checkpoint_every == 0))
+    if (stop || last || (fc_.checkpoint_every > 0 && r.step % fc_.checkpoint_every == 0))
       write_checkpoint_now();
     if (stop) {
       summary_.signal = stop_signal != 0 ? static_cast<int>(stop_signal) : SIGTERM;
@@ -850,7 +851,7 @@ bool Run::run_time_steps() {
           summary_.signal, r.step, r.time, checkpoint_path_, fc_.path, output_dir_));
       return false;
     }
-    reporter_.progress("time steps", double(k + 1) / steps);
+    reporter_.progress("time steps", chosen ? (r.time - start_time) / (fc_.end - start_time) : double(k + 1) / steps);
   }
   return true;
 }

@@ -64,6 +64,9 @@ struct SimulationSummary {
   double distribution_memory_mb = 0.0;  // the first process's peak once it had read, split and sent the mesh
   std::string indices_file;  // indices.vtp, or indices.pvtp under MPI
   double steady_residual = -1.0;  // a steady case's relative residual at its answer (StepReport::residual)
+  // s: the steps' lengths, least and largest (this run's; equal to the case's dt but where it aims
+  // at a CFL number, FlowCase::cfl_target), and the simulated time this run covered.
+  double least_time_step = 0.0, largest_time_step = 0.0, simulated_seconds = 0.0;
   std::vector<BoundaryFlow> ends;      // per boundary at the end: flux, mean pressure (rcr: capacitor too)
 };
 

@@ -68,6 +68,10 @@ TEST(FlowCase, TimeStepDividedSavesAtTheSameTimes) {
   EXPECT_EQ(c.checkpoint_every, 20);
   EXPECT_EQ(c.fluid_every, 20);
   EXPECT_DOUBLE_EQ(c.end, 1.0);
+  EXPECT_EQ(c.cfl_target, 0.0);  // none: still none
+  c.cfl_target = 40.0;
+  divide_time_step(c, 2);
+  EXPECT_DOUBLE_EQ(c.cfl_target, 20.0);
   EXPECT_THROW(divide_time_step(c, 0), OptionError);
   c.steady = true;
   EXPECT_THROW(divide_time_step(c, 2), OptionError);
@@ -143,6 +147,26 @@ TEST(FlowCase, MistakesAreNamed) {
   expect_error(kContract + std::string("[output]\nwss_method = \"spr\"\n"), "output.wss_method");
   expect_error(kContract + std::string("[output]\nwss = \"face\"\n"), "output.wss");
   expect_error(with(kContract, "dt = 1e-3", "dt = 1e-3\ninitial = \"potential\""), "time.initial");
+}
+
+// Issue 48: [time] cfl_target, the steps' length chosen for a CFL number (off unless given); a
+// value not above 0, too large, or on a steady case is named; the step's choice grows at most 1.25x,
+// shrinks at most 4x, and the last steps land on the end, no longer than asked and without a sliver.
+TEST(FlowCase, TimeStepsForACflTarget) {
+  EXPECT_EQ(parse_case(kContract, "case.toml").cfl_target, 0.0);
+  EXPECT_EQ(parse_case(with(kContract, "dt = 1e-3", "dt = 1e-3\ncfl_target = 20"), "case.toml").cfl_target, 20.0);
+  expect_error(with(kContract, "dt = 1e-3", "dt = 1e-3\ncfl_target = 0"), "time.cfl_target");
+  expect_error(with(kContract, "dt = 1e-3", "dt = 1e-3\ncfl_target = 5000"), "time.cfl_target");
+  expect_error(with(kContract, "steady = false", "steady = true\ncfl_target = 5"), "time.cfl_target");
+  EXPECT_DOUBLE_EQ(next_time_step(0.01, 10.0, 20.0), 0.0125);  // at most 1.25x
+  EXPECT_DOUBLE_EQ(next_time_step(0.01, 0.0, 20.0), 0.0125);   // at rest
+  EXPECT_DOUBLE_EQ(next_time_step(0.01, 40.0, 20.0), 0.005);   // twice the target: half
+  EXPECT_DOUBLE_EQ(next_time_step(0.01, 400.0, 20.0), 0.0025);  // at most 4x shorter
+  EXPECT_DOUBLE_EQ(next_time_step(0.01, 21.0, 21.0), 0.01);
+  EXPECT_DOUBLE_EQ(landing_time_step(0.01, 0.5, 1.0), 0.01);
+  EXPECT_DOUBLE_EQ(landing_time_step(0.01, 0.985, 1.0), 0.5 * (1.0 - 0.985));  // 1.5 dt left: two halves
+  EXPECT_DOUBLE_EQ(landing_time_step(0.01, 0.99, 1.0), 1.0 - 0.99);  // dt left: all of it
+  EXPECT_DOUBLE_EQ(landing_time_step(0.01, 0.996, 1.0), 1.0 - 0.996);
 }
 
 // An rcr end (issue 32): its keys read, its initial pressure the distal one unless given, and

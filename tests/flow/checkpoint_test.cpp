@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -28,6 +29,8 @@ Checkpoint sample_checkpoint() {
   c.fingerprint = 0x1234abcdull;
   c.flow.time = 0.125;
   c.flow.steps = 25;
+  c.flow.time_step = 0.0055;
+  c.flow.last_time_step = 0.005;
   c.flow.velocity = {Vec3(1, 2, 3), Vec3(-1, 0.5, 1e-9)};
   c.flow.previous = {Vec3(0.9, 2, 3), Vec3(-1, 0.25, 0)};
   c.flow.kinematic_pressure = {3.5, -2.0};
@@ -57,6 +60,8 @@ TEST(Checkpoint, ReadsBackWhatItWroteAndRefusesDamagedFiles) {
   EXPECT_EQ(r.fingerprint, c.fingerprint);
   EXPECT_EQ(r.flow.time, c.flow.time);
   EXPECT_EQ(r.flow.steps, c.flow.steps);
+  EXPECT_EQ(r.flow.time_step, c.flow.time_step);
+  EXPECT_EQ(r.flow.last_time_step, c.flow.last_time_step);
   EXPECT_EQ(r.flow.velocity, c.flow.velocity);
   EXPECT_EQ(r.flow.previous, c.flow.previous);
   EXPECT_EQ(r.flow.kinematic_pressure, c.flow.kinematic_pressure);
@@ -294,6 +299,68 @@ TEST(Simulate, TheRunsFiguresNameTheirParts) {
   EXPECT_TRUE(j.contains("initial_state_seconds"));
   EXPECT_NEAR(j["settled_seconds_per_step_per_million_dofs"].get<double>(), s.settled_step_seconds / (s.dofs * 1e-6),
               1e-9);
+}
+
+// Issue 48: a case aiming at a CFL number (cfl_target) chooses its steps' lengths: from its dt
+// they grow by at most 1.25x a step until the largest CFL number is about the target, the last
+// lands on the end; fewer steps than the fixed dt's; summary.json says what it did; a checkpoint
+// keeps the next step's length and the last one's, and a restart goes on with them.
+TEST(Simulate, StepsChosenForACflTargetGrowToItAndLandOnTheEnd) {
+  const test::TemporaryFolder folder;
+  FlowCase fc = read_case(pipe_case(folder, 12));
+  const SimulationSummary fixed = simulate(fc, folder.path("fixed"));
+  // The fixed steps' largest CFL number, from their log.
+  const auto rows = [](const std::string& log_path) {
+    std::vector<std::array<double, 3>> out;  // time, max_cfl, linear iterations
+    std::istringstream log(io::read_file(log_path));
+    std::string line;
+    std::getline(log, line);
+    while (std::getline(log, line)) {
+      std::vector<double> v;
+      std::istringstream fields(line);
+      for (std::string f; std::getline(fields, f, ',');) v.push_back(std::stod(f));
+      out.push_back({v[1], v[v.size() - 4], v[v.size() - 5]});
+    }
+    return out;
+  };
+  const double fixed_cfl = rows(folder.path("fixed/log.csv")).back()[1];
+  ASSERT_GT(fixed_cfl, 0.0);
+  fc.cfl_target = 3.0 * fixed_cfl;
+  const SimulationSummary chosen = simulate(fc, folder.path("chosen"));
+  EXPECT_EQ(chosen.status, "completed");
+  EXPECT_LT(chosen.steps, fixed.steps);
+  const auto steps = rows(folder.path("chosen/log.csv"));
+  ASSERT_EQ(static_cast<int>(steps.size()), chosen.steps);
+  EXPECT_NEAR(steps.back()[0], fc.end, 1e-9);
+  double before = fc.dt, time = 0.0;
+  for (size_t k = 0; k < steps.size(); ++k) {
+    const double dt = steps[k][0] - time;
+    time = steps[k][0];
+    std::printf("step %zu: dt %.4g ms, cfl %.3g, its %g\n", k + 1, 1e3 * dt, steps[k][1], steps[k][2]);
+    if (k + 1 < steps.size()) EXPECT_LE(dt, 1.25 * before * (1 + 1e-9)) << "step " << k + 1;
+    EXPECT_LE(steps[k][1], 1.3 * fc.cfl_target) << "step " << k + 1;
+    before = dt;
+  }
+  EXPECT_NEAR(chosen.least_time_step, fc.dt, 1e-12);
+  EXPECT_GT(chosen.largest_time_step, 2.0 * fc.dt);
+  const auto j = nlohmann::json::parse(io::read_file(folder.path("chosen/summary.json")));
+  EXPECT_DOUBLE_EQ(j["time_steps"]["cfl_target"].get<double>(), fc.cfl_target);
+  EXPECT_DOUBLE_EQ(j["time_steps"]["largest_s"].get<double>(), chosen.largest_time_step);
+  EXPECT_NEAR(j["time_steps"]["simulated_s"].get<double>(), fc.end, 1e-12);
+  EXPECT_FALSE(nlohmann::json::parse(io::read_file(folder.path("fixed/summary.json"))).contains("time_steps"));
+  // The checkpoint at the end: the last step's length and the next one's.
+  const Checkpoint c = read_checkpoint(folder.path("chosen/checkpoint.bin"));
+  EXPECT_NEAR(c.flow.last_time_step, steps.back()[0] - steps[steps.size() - 2][0], 1e-9);
+  EXPECT_GT(c.flow.time_step, 0.0);
+  // Extended by a restart: it goes on from there to the new end, with the steps' lengths kept.
+  FlowCase longer = fc;
+  longer.end = 2.0 * fc.end;
+  const SimulationSummary more = simulate(longer, folder.path("chosen"), "", silent_reporter(), /*restart=*/true);
+  EXPECT_EQ(more.status, "completed");
+  const auto all = rows(folder.path("chosen/log.csv"));
+  ASSERT_GT(all.size(), steps.size());
+  EXPECT_NEAR(all.back()[0], longer.end, 1e-9);
+  EXPECT_NEAR(all[steps.size()][0] - steps.back()[0], c.flow.time_step, 1e-9);  // the log's 9 digits
 }
 
 // Issue 29: a run stopped at step 8 of 12 (a case ending there, at a save) and restarted from its
