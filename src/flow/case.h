@@ -9,7 +9,7 @@
 //              period may come with end too: the wall shear stress indices cover the last period
 //              cfl_target = C (optional; where only the settled or periodic flow is wanted, not
 //              its history: the steps' length chosen for a largest CFL number of about C, dt the
-//              first's; Run::next_time_step)
+//              first's; next_time_step below)
 //   [[boundary]] tag = "inlet"; type = "velocity" | "traction" | "resistance" | "rcr" | "wall";
 //              profile = "parabolic" | "plug" | "womersley"; flow = 5.0 (mL/s) or waveform = "inlet.csv"
 //              (time s, flow mL/s, repeated with its period); scale = -1.0 (multiplies the flow:

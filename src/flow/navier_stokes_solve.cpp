@@ -104,9 +104,9 @@ StepReport NavierStokes::step() {
   const BdfWeights bdf = bdf_weights(first, dt / (s.dt_last > 0.0 ? s.dt_last : s.fc.dt));
   const double alpha0 = bdf.current;
   std::vector<Vec3> history(s.n()), advect(s.n());
-  for (int a = 0; a < s.n(); ++a) {
-    history[a] = (first ? s.u[a] : Vec3(bdf.now * s.u[a] - bdf.before * s.u_old[a])) / dt;
-    advect[a] = first ? s.u[a] : Vec3(bdf.convect_now * s.u[a] - bdf.convect_before * s.u_old[a]);
+  for (int a = 0; a < s.n(); ++a) {  // the first step's weights take u^n alone
+    history[a] = Vec3(bdf.now * s.u[a] - bdf.before * s.u_old[a]) / dt;
+    advect[a] = Vec3(bdf.convect_now * s.u[a] - bdf.convect_before * s.u_old[a]);
   }
   s.update_resistance(dt);
   s.set_dirichlet(t_next);

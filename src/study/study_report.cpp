@@ -87,7 +87,8 @@ std::string angle(double degrees) { return degrees >= 0.0 ? number(degrees, 3) :
 // degrees on the demo's uniform and anisotropic volumes), so the layer's bound is judged in the
 // layer's own frame (volume::VolumeQuality::min_dihedral_layer_frame: each cell mapped onto the
 // unit prism of its column), where a small angle is what the layer made (a bad cut, a bent or
-// pinched column); inside, a small angle is a sliver. A mesh without the frame's figure (a stamp from before) is judged on its raw one.
+// pinched column); inside, a small angle is a sliver. A mesh without the frame's figure (a stamp
+// from before) is judged on its raw one.
 constexpr double kLayerDihedralBound = 5.0, kInteriorDihedralBound = 10.0;
 
 // Table 1's sentence on those bounds: met by every mesh, or the meshes and parts that miss them.
