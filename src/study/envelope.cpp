@@ -105,6 +105,8 @@ std::vector<double> calibrated_sizes(const TriMesh& input, const std::vector<dou
   return next;
 }
 
+double envelope_level_scale(double factor, int level) { return kEnvelopeMargin * std::pow(factor, level - 1); }
+
 LevelLayers level_layers(int layers, double scale) {
   LevelLayers out;
   if (layers <= 0) return out;
@@ -120,7 +122,7 @@ LevelLayers level_layers(int layers, double scale) {
   while (sum(high) < wanted) high *= 2.0;
   for (int i = 0; i < 100 && high - low > 1e-14; ++i) (sum(0.5 * (low + high)) < wanted ? low : high) = 0.5 * (low + high);
   out.growth = sum(low) >= wanted - 1e-12 ? low : high;
-  if (out.growth > kMostLayerGrowth) out = {static_cast<int>(std::ceil(wanted - 1e-9)), 1.0};
+  if (out.growth > kMostLayerGrowth + 1e-9) out = {static_cast<int>(std::ceil(wanted - 1e-9)), 1.0};
   return out;
 }
 

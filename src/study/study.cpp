@@ -525,10 +525,10 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
     run.folder = (fs::path(folder) / name).string();
     fs::create_directories(run.folder);
     const int volume_points = run.series ? 0 : volume_target;
-    // An envelope level k: its sizes factor^k finer than the envelope's, its layer and interior too.
+    // An envelope level k: its sizes factor^(k-1) finer than the envelope's (the margin beside), its
+    // layer and interior too.
     const bool envelope_level = run.series && envelope_series;
-    const double scale =
-        kEnvelopeMargin * std::pow(config.factor, m + 1 - static_cast<double>(config.kinds.size()));
+    const double scale = envelope_level_scale(config.factor, static_cast<int>(m + 1 - config.kinds.size()));
     if (envelope_level && envelope.empty()) make_envelope();
     const LevelLayers layer_design =
         envelope_level ? level_layers(config.layers, scale) : LevelLayers{config.layers, 1.0};

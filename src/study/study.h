@@ -5,8 +5,8 @@
 //  3. their volume meshes with the boundary layer;
 //  4. a refinement series of `levels` meshes, the finest being the reference: by default (`kind =
 //     "envelope"`, study/envelope.h) level k is finer than every compared mesh everywhere, its
-//     wall's size the least of their achieved sizes / factor^k, its first layer height and interior
-//     likewise; `kind = "uniform"` (the seed paper's design) is uniform meshes of triangles x
+//     wall's size the least of their achieved sizes / (1.1 x factor^(k-1)), its first layer height
+//     and interior likewise; `kind = "uniform"` (the seed paper's design) is uniform meshes of triangles x
 //     factor^k triangles;
 //  5. the flow case on every mesh;
 //  6. WSS at the chosen time on each ring and point; the relative difference of each ring's
@@ -25,9 +25,10 @@
 //   triangles = 8000           # the four meshes' surface triangles
 //   meshes = ["uniform", "distance", "curvature", "anisotropic"]
 //   [reference] kind = "envelope" (or "uniform"), levels = 3, factor = 1.33 (envelope: each level
-//               that many times finer in h than the one before, level 1 that many times finer than
-//               the finest compared mesh at every point: 1.33^3 = 2.35 times the volume nodes a
-//               level) or 2.0 (uniform: that many times the triangles a level), time_step_check =
+//               that many times finer in h than the one before, level 1 the finest compared mesh
+//               at every point / 1.1: 1.33^3 = 2.35 times the volume nodes a level, the reference
+//               1.95 times finer than any compared mesh) or 2.0 (uniform: that many times the
+//               triangles a level), time_step_check =
 //               true (an unsteady case: level 1's flow again at half the time step, the time step's
 //               share of the reference's error beside its grid convergence)
 //   [volume]    layers = 4, thickness_ratio = 0.1, layer_angle = 0 (the paper's layer on every

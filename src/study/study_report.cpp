@@ -202,7 +202,7 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
       config.surface, config.flow_case, result.time, reference.name,
       config.reference == ReferenceKind::envelope
           ? fmt::format("envelope series: level k's wall sizes the least of the compared meshes' achieved sizes at "
-                        "each point divided by {:g} x {:g}^k, its first layer height and interior likewise",
+                        "each point divided by {:g} x {:g}^(k-1), its first layer height and interior likewise",
                         kEnvelopeMargin, config.factor)
           : "uniform refinement series",
       unit, VESSELMESH_VERSION));
@@ -253,7 +253,9 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
       }
       doc.figure(fmt::format("ring_{}_{}", ring, series ? "series" : "meshes"), svg(chart),
                  fmt::format("WSS magnitude along ring {}, {}", ring,
-                             series ? "uniform refinement series" : "the compared meshes against the reference"));
+                             series ? (config.reference == ReferenceKind::envelope ? "the envelope refinement series"
+                                                                                   : "the uniform refinement series")
+                                    : "the compared meshes against the reference"));
     }
   }
 

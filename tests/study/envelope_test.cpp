@@ -44,16 +44,24 @@ TEST(Envelope, AchievedSizesAreTheMeanOfTheTrianglesAround) {
   EXPECT_EQ(s[4], 0.0);  // used by no triangle
 }
 
+// Level k's scale: the coarsest level the envelope itself with the margin, each next factor finer.
+TEST(Envelope, TheSeriesStartsAtTheEnvelope) {
+  EXPECT_DOUBLE_EQ(envelope_level_scale(1.33, 1), kEnvelopeMargin);
+  EXPECT_NEAR(envelope_level_scale(1.33, 2), 1.1 * 1.33, 1e-12);
+  EXPECT_NEAR(envelope_level_scale(1.33, 3), 1.1 * 1.33 * 1.33, 1e-12);  // the defaults' reference: 1.95
+  EXPECT_NEAR(envelope_level_scale(1.5, 2), 1.65, 1e-12);
+}
+
 // Level k's layer: the first height the compared layer's over the scale, over the same thickness,
 // the heights growing from the wall by at most kMostLayerGrowth: exactly the scale where that
 // growth does, else uniform layers a little finer.
 TEST(Envelope, LevelLayersDivideTheFirstHeightByTheScale) {
   for (const int layers : {2, 4, 5})
-    for (const double scale : {1.0, 1.33, 1.33 * 1.33, 1.33 * 1.33 * 1.33, 2.0, 3.7}) {
+    for (const double scale : {1.0, 1.1, 1.33, 1.1 * 1.33, 1.33 * 1.33, 1.33 * 1.33 * 1.33, 2.0, 3.7}) {
       const LevelLayers l = level_layers(layers, scale);
       EXPECT_GE(l.layers, layers);
       EXPECT_GE(l.growth, 1.0);
-      EXPECT_LE(l.growth, kMostLayerGrowth) << layers << " " << scale;
+      EXPECT_LE(l.growth, kMostLayerGrowth + 1e-9) << layers << " " << scale;
       const std::vector<double> f = volume::layer_fractions(l.layers, l.growth);
       ASSERT_EQ(f.size(), static_cast<size_t>(l.layers) + 1);
       EXPECT_NEAR(f.back(), 1.0, 1e-12);
@@ -66,6 +74,8 @@ TEST(Envelope, LevelLayersDivideTheFirstHeightByTheScale) {
     }
   EXPECT_EQ(level_layers(4, 1.0).layers, 4);
   EXPECT_DOUBLE_EQ(level_layers(4, 1.0).growth, 1.0);
+  EXPECT_EQ(level_layers(2, 1.1).layers, 2);  // growth 1.2 exactly, the most allowed: kept
+  EXPECT_NEAR(level_layers(2, 1.1).growth, 1.2, 1e-12);
   EXPECT_EQ(level_layers(2, 1.33).layers, 3);  // growth 1.66 for two layers: three uniform ones
   EXPECT_EQ(level_layers(4, 1.33).layers, 5);  // 5.32: five growing by a little
   EXPECT_GT(level_layers(4, 1.33).growth, 1.0);
