@@ -13,40 +13,6 @@ namespace {
 
 constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
 
-// Per point of the volume mesh: the height of the first cells above it when it is a wall point
-// (the least |e . n| over its edges to points off the boundary), else NaN; n the area-weighted
-// normal of its wall triangles.
-std::vector<double> first_heights(const TetMesh& volume) {
-  int wall_tag = -1;
-  for (const auto& [tag, name] : volume.tag_names)
-    if (name == "wall") wall_tag = tag;
-  const size_t n = volume.points.size();
-  std::vector<Vec3> normal(n, Vec3::Zero());
-  std::vector<char> on_boundary(n, 0);
-  for (size_t t = 0; t < volume.boundary.size(); ++t) {
-    const Triangle& f = volume.boundary[t];
-    for (int v : f) on_boundary[v] = 1;
-    if (volume.boundary_tags[t] != wall_tag) continue;
-    const Vec3 a = (volume.points[f[1]] - volume.points[f[0]]).cross(volume.points[f[2]] - volume.points[f[0]]);
-    for (int v : f) normal[v] += a;
-  }
-  std::vector<double> height(n, std::numeric_limits<double>::infinity());
-  const auto edge = [&](int a, int b) {
-    if (on_boundary[b] || normal[a].squaredNorm() == 0.0) return;
-    height[a] = std::min(height[a], std::abs((volume.points[b] - volume.points[a]).dot(normal[a].normalized())));
-  };
-  const auto cell = [&](const auto& c) {
-    for (size_t i = 0; i < c.size(); ++i)
-      for (size_t j = 0; j < c.size(); ++j)
-        if (i != j) edge(c[i], c[j]);
-  };
-  for (const Tet& t : volume.tets) cell(t);
-  for (const Prism& p : volume.prisms) cell(p);
-  for (size_t v = 0; v < n; ++v)
-    if (!std::isfinite(height[v])) height[v] = kNone;
-  return height;
-}
-
 // The mean of the values whose sites lie within `reach` of x, or the nearest site's value when
 // none does (NaN values left out).
 double mean_near(const std::vector<Vec3>& sites, const std::vector<double>& values, const Vec3& x, double reach) {
@@ -68,6 +34,37 @@ double mean_near(const std::vector<Vec3>& sites, const std::vector<double>& valu
 }
 
 }  // namespace
+
+std::vector<double> first_heights(const TetMesh& volume) {
+  int wall_tag = -1;
+  for (const auto& [tag, name] : volume.tag_names)
+    if (name == "wall") wall_tag = tag;
+  const size_t n = volume.points.size();
+  std::vector<Vec3> normal(n, Vec3::Zero());
+  std::vector<char> on_boundary(n, 0);
+  for (size_t t = 0; t < volume.boundary.size(); ++t) {
+    const Triangle& f = volume.boundary[t];
+    for (int v : f) on_boundary[v] = 1;
+    if (volume.boundary_tags[t] != wall_tag) continue;
+    const Vec3 a = (volume.points[f[1]] - volume.points[f[0]]).cross(volume.points[f[2]] - volume.points[f[0]]);
+    for (int v : f) normal[v] += a;
+  }
+  std::vector<double> height(n, kNone), along(n, -1.0);  // along: the chosen edge's |cosine| to n
+  const auto edge = [&](int a, int b) {
+    if (on_boundary[b] || normal[a].squaredNorm() == 0.0) return;
+    const Vec3 e = volume.points[b] - volume.points[a];
+    const double h = std::abs(e.dot(normal[a].normalized())), cosine = h / e.norm();
+    if (cosine > along[a]) along[a] = cosine, height[a] = h;
+  };
+  const auto cell = [&](const auto& c) {
+    for (size_t i = 0; i < c.size(); ++i)
+      for (size_t j = 0; j < c.size(); ++j)
+        if (i != j) edge(c[i], c[j]);
+  };
+  for (const Tet& t : volume.tets) cell(t);
+  for (const Prism& p : volume.prisms) cell(p);
+  return height;
+}
 
 std::vector<PlaceResolution> measure_resolution(const TriMesh& wall, const TetMesh& volume,
                                                 const std::vector<Place>& places, const ResolutionOptions& options) {

@@ -4,8 +4,8 @@
 //    whose centroids lie within `reach` x the local radius of the position (the nearest triangle
 //    when none does);
 //  - first-layer height: the mean, over its wall points within that reach (the nearest one when
-//    none is), of the height of the first cells above the point: the least |e . n| over the
-//    point's edges to points off the boundary, n the wall's normal there;
+//    none is), of the height of the first cells above the point: |e . n| of the point's edge to a
+//    point off the boundary that is nearest the wall's normal n there (in a layer, its column's);
 //  - interior size: the mean edge length of its cells whose centroids lie within `depth_reach` x
 //    the radius of the point `depth` x the radius inward from the position (below the layer).
 // The local radius and the inward normal come from the input surface the places were given on.
@@ -37,6 +37,14 @@ struct ResolutionOptions {
   double depth = 0.5;        // of the local radius, inward, the interior's sample
   double depth_reach = 0.25; // of the local radius, round that sample
 };
+
+// Per point of the volume mesh: the height of the first cells above it when it is a wall point
+// (|e . n| of its edge to a point off the boundary that is nearest the normal: in a layer, its
+// column's), else NaN; n the area-weighted normal of its wall triangles. (The least |e . n| over
+// those edges took a neighbour column's edge, nearly along the wall where it curves: at the
+// anastomosis's heel 0.0001-0.004 mm on the uniform mesh of 8000 triangles whose columns' first
+// cells are 0.035-0.037 mm high, a mean of 0.013.)
+std::vector<double> first_heights(const TetMesh& volume);
 
 // One PlaceResolution per place; `wall` is the mesh's wall (its surface mesh), `volume` its volume
 // mesh (the wall's triangles are its boundary triangles tagged `wall`).

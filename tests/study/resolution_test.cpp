@@ -77,6 +77,22 @@ TEST(Resolution, MeasuresAHandBuiltBoxAsByHand) {
   EXPECT_NEAR(least_ratio(r[0].interior, f[0].interior), 2.0, 1e-9);
 }
 
+// The first height at a wall point is its column's (the edge nearest the normal), not a neighbour's
+// edge that runs nearly along the wall (as where a layer's wall curves): 0.05, not 0.002.
+TEST(Resolution, TheFirstHeightIsTheColumnsNotANeighboursAlongTheWall) {
+  TetMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.1, 0.1, 0.05}, {1.5, 0.2, 0.002}};
+  m.tets = {{0, 1, 2, 3}, {0, 1, 3, 4}};
+  m.boundary = {{0, 2, 1}};
+  m.boundary_tags = {1};
+  m.tag_names = {{1, "wall"}};
+  const std::vector<double> h = first_heights(m);
+  ASSERT_EQ(h.size(), 5u);
+  EXPECT_NEAR(h[0], 0.05, 1e-12);
+  EXPECT_NEAR(h[1], 0.05, 1e-12);  // (-0.9, 0.1, 0.05): nearer the normal than (0.5, 0.2, 0.002)
+  EXPECT_TRUE(std::isnan(h[3]));   // off the wall
+}
+
 TEST(Resolution, MeansAndRatiosLeaveOutWhatIsNotMeasured) {
   EXPECT_DOUBLE_EQ(mean_of({1.0, NAN, 3.0}), 2.0);
   EXPECT_TRUE(std::isnan(mean_of({NAN})));
