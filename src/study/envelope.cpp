@@ -105,7 +105,9 @@ std::vector<double> calibrated_sizes(const TriMesh& input, const std::vector<dou
   return next;
 }
 
-double envelope_level_scale(double factor, int level) { return kEnvelopeMargin * std::pow(factor, level - 1); }
+double envelope_level_scale(double factor, int level, int levels) {
+  return kEnvelopeMargin * std::pow(factor, levels >= 3 ? level - 1 : level);
+}
 
 LevelLayers level_layers(int layers, double scale) {
   LevelLayers out;

@@ -29,14 +29,16 @@ namespace vesselmesh::study {
 // 10 % finer than its nominal scale for the least ratio at a place to stay about that scale.
 constexpr double kEnvelopeMargin = 1.1;
 
-// Level k's scale (k = 1 .. levels): kEnvelopeMargin x factor^(k-1). The series starts at the
-// envelope itself, not a level finer: the grid convergence of its levels asks its coarsest to be in
-// the asymptotic range, as every compared mesh must be anyway for the study to mean anything, and
-// the flows' cost, which goes as the finest level's nodes, is factor^3 less (2.35 at 1.33) for a
-// reference 1.1 x factor^(levels-1) finer than every compared mesh (1.95 at the defaults). Starting
-// a level finer, the reduced anastomosis study's third level had 3.4 M unknowns against the compared
-// meshes' 0.11 M: about 2 hours of flow on 2 cores.
-double envelope_level_scale(double factor, int level);
+// Level k's scale (k = 1 .. levels): kEnvelopeMargin x factor^(k-1) in a series of three levels or
+// more. Such a series starts at the envelope itself, not a level finer: the grid convergence of its
+// levels asks its coarsest to be in the asymptotic range, as every compared mesh must be anyway for
+// the study to mean anything, and the flows' cost, which goes as the finest level's nodes, is
+// factor^3 less (2.35 at 1.33) for a reference 1.1 x factor^(levels-1) finer than every compared
+// mesh (1.95 at the defaults). Starting a level finer, the reduced anastomosis study's third level
+// had 3.4 M unknowns against the compared meshes' 0.11 M: about 2 hours of flow on 2 cores. One or
+// two levels are a reference without a grid convergence: kEnvelopeMargin x factor^k, so that the
+// reference is at least 1.1 x factor finer (the demo's one level: 1.46).
+double envelope_level_scale(double factor, int level, int levels);
 
 // A triangle's size in its shortest direction: the side of the equilateral triangle whose altitude
 // is the triangle's shortest, 2 / sqrt 3 x that altitude (an equilateral triangle's edge; a

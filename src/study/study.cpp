@@ -528,7 +528,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
     // An envelope level k: its sizes factor^(k-1) finer than the envelope's (the margin beside), its
     // layer and interior too.
     const bool envelope_level = run.series && envelope_series;
-    const double scale = envelope_level_scale(config.factor, static_cast<int>(m + 1 - config.kinds.size()));
+    const double scale = envelope_level_scale(config.factor, static_cast<int>(m + 1 - config.kinds.size()), config.levels);
     if (envelope_level && envelope.empty()) make_envelope();
     const LevelLayers layer_design =
         envelope_level ? level_layers(config.layers, scale) : LevelLayers{config.layers, 1.0};

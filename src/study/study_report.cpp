@@ -202,8 +202,8 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
       config.surface, config.flow_case, result.time, reference.name,
       config.reference == ReferenceKind::envelope
           ? fmt::format("envelope series: level k's wall sizes the least of the compared meshes' achieved sizes at "
-                        "each point divided by {:g} x {:g}^(k-1), its first layer height and interior likewise",
-                        kEnvelopeMargin, config.factor)
+                        "each point divided by {:g} x {:g}^{}, its first layer height and interior likewise",
+                        kEnvelopeMargin, config.factor, config.levels >= 3 ? "(k-1)" : "k")
           : "uniform refinement series",
       unit, VESSELMESH_VERSION));
 

@@ -45,11 +45,14 @@ TEST(Envelope, AchievedSizesAreTheMeanOfTheTrianglesAround) {
 }
 
 // Level k's scale: the coarsest level the envelope itself with the margin, each next factor finer.
+// (Three levels or more; one or two are a reference without a grid convergence, a factor finer.)
 TEST(Envelope, TheSeriesStartsAtTheEnvelope) {
-  EXPECT_DOUBLE_EQ(envelope_level_scale(1.33, 1), kEnvelopeMargin);
-  EXPECT_NEAR(envelope_level_scale(1.33, 2), 1.1 * 1.33, 1e-12);
-  EXPECT_NEAR(envelope_level_scale(1.33, 3), 1.1 * 1.33 * 1.33, 1e-12);  // the defaults' reference: 1.95
-  EXPECT_NEAR(envelope_level_scale(1.5, 2), 1.65, 1e-12);
+  EXPECT_DOUBLE_EQ(envelope_level_scale(1.33, 1, 3), kEnvelopeMargin);
+  EXPECT_NEAR(envelope_level_scale(1.33, 2, 3), 1.1 * 1.33, 1e-12);
+  EXPECT_NEAR(envelope_level_scale(1.33, 3, 3), 1.1 * 1.33 * 1.33, 1e-12);  // the defaults' reference: 1.95
+  EXPECT_NEAR(envelope_level_scale(1.5, 2, 4), 1.65, 1e-12);
+  EXPECT_NEAR(envelope_level_scale(1.33, 1, 1), 1.1 * 1.33, 1e-12);  // the demo's one level
+  EXPECT_NEAR(envelope_level_scale(1.33, 2, 2), 1.1 * 1.33 * 1.33, 1e-12);
 }
 
 // Level k's layer: the first height the compared layer's over the scale, over the same thickness,
