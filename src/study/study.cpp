@@ -261,6 +261,236 @@ MeshRun run_half_step(const StudyConfig& config, const flow::FlowCase& base_case
   return half;
 }
 
+// A mesh's figures from its stamp (study.json's keys; those a stamp from before lacks as they were).
+void read_stamp(const Json& j, const StudyConfig& config, MeshRun& run) {
+  run.surface_triangles = j["surface_triangles"];
+  run.least_count = j.value("least_count", 0);
+  run.surface_points = j["surface_points"];
+  run.volume_points = j["volume_points"];
+  run.tetrahedra = j["tetrahedra"];
+  run.dofs = j["dofs"];
+  run.min_dihedral = j["min_dihedral"];
+  run.min_dihedral_layer = j.value("min_dihedral_layer", -1.0);
+  run.min_dihedral_interior = j.value("min_dihedral_interior", -1.0);
+  run.min_dihedral_layer_frame = j.value("min_dihedral_layer_frame", -1.0);
+  run.interior_size = j.value("interior_size", config.interior.factor);
+  run.target_triangles = j.value("target_triangles", run.target_triangles);
+  run.layers = j.value("layers", config.layers);
+  run.layer_growth = j.value("layer_growth", 1.0);
+  for (const auto& [k, v] : j["seconds"].items()) run.seconds[k] = v.get<double>();
+}
+
+// The stamp of a mesh made: what made it (`key`) and its figures.
+Json stamp_of(const MeshRun& run, const std::string& key) {
+  return {{"key", key},
+          {"mesh", run.name},
+          {"surface_triangles", run.surface_triangles},
+          {"least_count", run.least_count},
+          {"surface_points", run.surface_points},
+          {"volume_points", run.volume_points},
+          {"tetrahedra", run.tetrahedra},
+          {"dofs", run.dofs},
+          {"min_dihedral", run.min_dihedral},
+          {"min_dihedral_layer", run.min_dihedral_layer},
+          {"min_dihedral_interior", run.min_dihedral_interior},
+          {"min_dihedral_layer_frame", run.min_dihedral_layer_frame},
+          {"interior_size", run.interior_size},
+          {"target_triangles", run.target_triangles},
+          {"layers", run.layers},
+          {"layer_growth", run.layer_growth},
+          {"seconds", run.seconds}};
+}
+
+// A mesh's WSS at the study's time on each ring and at each point.
+void sample_wall(MeshRun& run, const StudyResult& result, const std::vector<post::PointSpec>& points) {
+  const post::WallField wall = post::wall_at_time(post::read_wall_series(run.folder + "/flow"), result.time);
+  for (const post::RingSpec& spec : result.rings) run.rings.push_back(post::cut_ring(wall.mesh, wall.wss, spec));
+  run.points = post::probe_points(wall.mesh, wall.wss, points);
+}
+
+// The envelope series' wall sizes on the input, its interior's factor, and what they depend on (the
+// compared surfaces, their interiors) for the levels' key.
+struct Envelope {
+  std::vector<double> sizes;
+  double interior_factor = 1.0;
+  std::string key;
+};
+Envelope make_envelope(const TriMesh& surface, const std::vector<MeshRun>& made, const Reporter& reporter) {
+  Envelope out;
+  std::vector<TriMesh> walls;
+  std::vector<double> compared_factors;
+  for (const MeshRun& done : made) {
+    if (done.series) continue;
+    const std::string wall_file = done.folder + "/surface.vtp";
+    walls.push_back(io::read_surface(wall_file).mesh);
+    out.key += fmt::format("compared {} {} interior {}\n", done.name, fingerprint(io::read_file(wall_file)),
+                           done.interior_size);
+    compared_factors.push_back(done.interior_size);
+  }
+  std::vector<const TriMesh*> meshes;
+  for (const TriMesh& w : walls) meshes.push_back(&w);
+  reporter.info(fmt::format("study: the reference's sizes: the least of the {} compared meshes' at each point",
+                            meshes.size()));
+  out.sizes = envelope_sizes(surface, meshes);
+  out.interior_factor = envelope_interior_factor(surface, meshes, compared_factors, out.sizes);
+  return out;
+}
+
+// A mesh's volume: its wall's boundary layer (`layer_design`) and interior, sized to `volume_points`
+// nodes when that is positive (the first compared mesh's).
+volume::VolumeResult make_volume(const TriMesh& wall, const StudyConfig& config, const LevelLayers& layer_design,
+                                 const volume::InteriorSizeOptions& interior,
+                                 const std::vector<volume::EndAt>& end_at, int volume_points,
+                                 const std::string& name, const Reporter& reporter) {
+  const centerline::DistanceMap wall_distance =
+      centerline::distance_map(wall, centerline::extract(wall, {}, reporter));
+  volume::VolumeOptions vo;
+  vo.layer.layers = layer_design.layers;
+  vo.layer.growth = layer_design.growth;
+  vo.layer.thickness_ratio = config.thickness_ratio;
+  vo.layer.min_angle_deg = config.layer_angle;
+  vo.layer.split_angle_deg = config.layer_split_angle;
+  vo.algorithm = volume::parse_fill_algorithm(config.algorithm);
+  vo.interior = interior;
+  vo.inlet = config.inlet;
+  vo.end_names = config.end_names;
+  vo.end_at = end_at;
+  if (volume_points > 0)
+    reporter.info(fmt::format("study: {}: its volume sized to {} nodes, as the first compared mesh's", name,
+                              volume_points));
+  return volume_points > 0 ? volume::build_volume_with_points(wall, analysis::open_ends(wall), wall_distance.radius,
+                                                           vo, volume_points, 0.02, reporter)
+                           : volume::build_volume(wall, analysis::open_ends(wall), wall_distance.radius, vo, reporter);
+}
+
+// A mesh's flow, going on from its checkpoint where a flow of this mesh and case (`key`) stopped;
+// StoppedError when a signal stops it.
+flow::SimulationSummary run_flow(const StudyConfig& config, const flow::FlowCase& base_case, const std::string& name,
+                                 const std::string& volume_file, const std::string& flow_dir, const std::string& key,
+                                 const Reporter& reporter) {
+  flow::FlowCase fc = base_case;
+  fc.mesh = volume_file;
+  // A flow of this mesh and case stopped before its end (the study killed) goes on from its
+  // checkpoint: the meshes are made again the same, the key names the case.
+  const std::string flow_key_file = flow_dir + "/study_flow_key";
+  const bool resume = !fc.steady && fs::exists(flow_dir + "/checkpoint.bin") && fs::exists(flow_key_file) &&
+                      io::read_file(flow_key_file) == key;
+  if (resume) reporter.info(fmt::format("study: {}: the flow goes on from its checkpoint", name));
+  fs::create_directories(flow_dir);
+  io::write_text(flow_key_file, key);
+  const flow::SimulationSummary s = config.ranks > 1
+                                        ? simulate_under_mpirun(config, volume_file, flow_dir, resume)
+                                        : flow::simulate(fc, flow_dir, "", reporter, resume);
+  if (s.status == "stopped")
+    throw StoppedError(fmt::format("stopped by signal {} in {}'s flow (its checkpoint is kept): run the same "
+                                   "study again to go on",
+                                   s.signal, name),
+                       s.signal);
+  return s;
+}
+
+// The warning for a compared mesh more than 3 % from its asked count, or nothing.
+std::string unequal_size_warning(const MeshRun& run) {
+  if (run.series || !(std::abs(run.surface_triangles - run.target_triangles) > 0.03 * run.target_triangles)) return {};
+  return fmt::format(
+      "the {} mesh has {} triangles, {:+.1f} % from the {:.0f} asked: the meshes are not of equal size (the "
+      "distance bound of the remesher keeps a coarse mesh from the surface's curves; raise `triangles`{})",
+      run.name, run.surface_triangles, 100.0 * (run.surface_triangles / run.target_triangles - 1.0),
+      run.target_triangles,
+      run.least_count > 0 ? fmt::format(" to at least {}, the least count the bound allows this kind", run.least_count)
+                          : std::string());
+}
+
+// The study's measures of every mesh: its WSS at the chosen time on the rings and points; its wall
+// fields on the reference's wall (study/wall_difference.h); what it resolves at each ring and point
+// (study/resolution.h). Their times in result.seconds.
+void measure_meshes(StudyResult& result, const StudyConfig& config, const TriMesh& surface,
+                    const centerline::DistanceMap& distance, const Reporter& reporter) {
+  auto step = Clock::now();
+  const post::WallSeries reference_series = post::read_wall_series(result.meshes.back().folder + "/flow");
+  result.time = config.time.value_or(reference_series.frames.back().time);
+  result.length_unit = reference_series.length_unit;
+  for (MeshRun& run : result.meshes) sample_wall(run, result, config.points);
+  if (result.half_step) sample_wall(*result.half_step, result, config.points);
+  result.seconds["wss on rings and points"] = since(step);
+
+  // Whole-wall measures (study/wall_difference.h): each mesh's WSS, TAWSS and OSI on the reference's wall.
+  step = Clock::now();
+  reporter.info("study: every mesh's wall fields on the reference's wall");
+  measure_whole_wall(result, reference_series);
+  result.seconds["whole-wall differences"] = since(step);
+
+  // What every mesh resolves at each ring and point (study/resolution.h).
+  step = Clock::now();
+  reporter.info("study: the meshes' resolution at the rings and points");
+  result.places = measured_places(surface, distance.radius, result.rings, config.points);
+  for (MeshRun& run : result.meshes)
+    run.resolution = measure_resolution(io::read_surface(run.folder + "/surface.vtp").mesh,
+                                        io::read_volume(run.folder + "/volume.msh"), result.places);
+  result.seconds["resolution at the rings and points"] = since(step);
+}
+
+// What every mesh depends on: the input's bytes, the options, the version.
+std::string common_key(const StudyConfig& config, const std::vector<volume::EndAt>& end_at) {
+  std::string common = fmt::format(
+      "vesselmesh {}\n{}\nunits={}\nlayers={} ratio={} layer_angle={} split_angle={} algorithm={} inlet={}\n"
+      "interior sized by design: factor={} gradation={} core={} equal volume nodes={} (Gmsh Delaunay optimized to 0.8)\n",
+      VESSELMESH_VERSION, fingerprint(io::read_file(config.surface)), config.units, config.layers,
+      config.thickness_ratio, config.layer_angle, config.layer_split_angle, config.algorithm, config.inlet,
+      config.interior.factor, config.interior.gradation, config.interior.core_fraction, config.equal_volume_nodes);
+  for (const std::string& n : config.end_names) common += n + ",";
+  if (config.extension_length > 0.0)
+    common += fmt::format("\nextensions {} {}", config.extension_length, config.extension_mode);
+  for (const volume::EndAt& e : end_at)
+    common += fmt::format("\nend {} {} {} {}", e.name, e.point.x(), e.point.y(), e.point.z());
+  return common;
+}
+
+// The meshes to make, in order: the compared kinds at `triangles`, then the series' levels (a
+// uniform level at triangles x factor^k; an envelope level's count is what its sizes predict, known
+// once the compared meshes are made: 0 here).
+struct Planned {
+  std::string name;
+  sizing::SizeKind kind;
+  double target_triangles;
+};
+std::vector<Planned> study_plan(const StudyConfig& config) {
+  std::vector<Planned> plan;
+  for (sizing::SizeKind kind : config.kinds) plan.push_back({sizing::size_kind_name(kind), kind, config.triangles});
+  for (int k = 1; k <= config.levels; ++k)
+    plan.push_back({fmt::format("level_{}", k), sizing::SizeKind::uniform,
+                    config.reference == ReferenceKind::envelope ? 0.0 : config.triangles * std::pow(config.factor, k)});
+  return plan;
+}
+
+// The study's input surface: read, repaired, with flow extensions on its open ends when asked (the
+// [[end]] points in `end_at` follow their ends).
+TriMesh study_input(const StudyConfig& config, std::vector<volume::EndAt>& end_at, const Reporter& reporter) {
+  io::ReadOptions read;
+  if (!config.units.empty()) read.units = io::parse_unit(config.units);
+  io::SurfaceFile file = io::read_surface(config.surface, read, reporter);
+  mesh::clean(file.mesh, {}, reporter);
+  if (!end_at.empty()) volume::names_of_ends(analysis::open_ends(file.mesh), end_at);  // and the ends' names
+  if (config.extension_length > 0.0) {
+    // Flow extensions on every open end; the [[end]] points follow their ends.
+    const std::vector<analysis::OpenEnd> ends = analysis::open_ends(file.mesh);
+    remesh::ExtensionResult extended =
+        remesh::extend_ends(file.mesh, ends,
+                            {.length = config.extension_length, .mode = remesh::parse_extension_mode(config.extension_mode)});
+    for (volume::EndAt& e : end_at) {
+      const remesh::ExtendedEnd* nearest = nullptr;
+      for (const remesh::ExtendedEnd& x : extended.extended)
+        if (!nearest || (x.old_center - e.point).norm() < (nearest->old_center - e.point).norm()) nearest = &x;
+      if (nearest) e.point = nearest->center;
+    }
+    for (const remesh::ExtendedEnd& x : extended.extended)
+      reporter.info(fmt::format("study: end {} extended by {:.4g} (radius {:.4g}): its centre now ({:.4g}, {:.4g}, {:.4g})",
+                                x.end, x.length, x.radius, x.center.x(), x.center.y(), x.center.z()));
+    file.mesh = std::move(extended.mesh);
+  }
+  return std::move(file.mesh);
+}
+
 }  // namespace
 
 ReferenceKind parse_reference_kind(const std::string& name) {
@@ -428,31 +658,9 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
   // 1. The input: read, repaired, its curvature, centerlines and distance map.
   auto step = Clock::now();
   reporter.info(fmt::format("study: reading {}", config.surface));
-  io::ReadOptions read;
-  if (!config.units.empty()) read.units = io::parse_unit(config.units);
-  io::SurfaceFile file = io::read_surface(config.surface, read, reporter);
-  mesh::clean(file.mesh, {}, reporter);
   const flow::FlowCase base_case = flow::read_case(config.flow_case);  // checked before any long step
   std::vector<volume::EndAt> end_at = config.end_at;
-  if (!end_at.empty()) volume::names_of_ends(analysis::open_ends(file.mesh), end_at);  // and the ends' names
-  if (config.extension_length > 0.0) {
-    // Flow extensions on every open end; the [[end]] points follow their ends.
-    const std::vector<analysis::OpenEnd> ends = analysis::open_ends(file.mesh);
-    remesh::ExtensionResult extended =
-        remesh::extend_ends(file.mesh, ends,
-                            {.length = config.extension_length, .mode = remesh::parse_extension_mode(config.extension_mode)});
-    for (volume::EndAt& e : end_at) {
-      const remesh::ExtendedEnd* nearest = nullptr;
-      for (const remesh::ExtendedEnd& x : extended.extended)
-        if (!nearest || (x.old_center - e.point).norm() < (nearest->old_center - e.point).norm()) nearest = &x;
-      if (nearest) e.point = nearest->center;
-    }
-    for (const remesh::ExtendedEnd& x : extended.extended)
-      reporter.info(fmt::format("study: end {} extended by {:.4g} (radius {:.4g}): its centre now ({:.4g}, {:.4g}, {:.4g})",
-                                x.end, x.length, x.radius, x.center.x(), x.center.y(), x.center.z()));
-    file.mesh = std::move(extended.mesh);
-  }
-  const TriMesh& surface = file.mesh;
+  const TriMesh surface = study_input(config, end_at, reporter);
   reporter.info("study: curvature, centerlines and distance map of the input");
   const analysis::CurvatureField curvature = analysis::curvature(surface, {}, reporter);
   const centerline::Centerlines lines = centerline::extract(surface, {}, reporter);
@@ -463,105 +671,49 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
     post::cut_ring(surface, std::vector<Vec3>(surface.points.size(), Vec3::Zero()), spec);
   result.seconds["input analysis"] = since(step);
 
-  // What every mesh depends on: the input's bytes, the options, the version.
-  std::string common = fmt::format(
-      "vesselmesh {}\n{}\nunits={}\nlayers={} ratio={} layer_angle={} split_angle={} algorithm={} inlet={}\n"
-      "interior sized by design: factor={} gradation={} core={} equal volume nodes={} (Gmsh Delaunay optimized to 0.8)\n",
-      VESSELMESH_VERSION, fingerprint(io::read_file(config.surface)), config.units, config.layers,
-      config.thickness_ratio, config.layer_angle, config.layer_split_angle, config.algorithm, config.inlet,
-      config.interior.factor, config.interior.gradation, config.interior.core_fraction, config.equal_volume_nodes);
-  for (const std::string& n : config.end_names) common += n + ",";
-  if (config.extension_length > 0.0)
-    common += fmt::format("\nextensions {} {}", config.extension_length, config.extension_mode);
-  for (const volume::EndAt& e : end_at)
-    common += fmt::format("\nend {} {} {} {}", e.name, e.point.x(), e.point.y(), e.point.z());
+  const std::string common = common_key(config, end_at);
   std::string case_text = io::read_file(config.flow_case);
   for (const flow::BoundaryCondition& b : base_case.boundaries)
     if (!b.waveform_file.empty()) case_text += io::read_file(b.waveform_file);
 
-  std::vector<std::pair<std::string, sizing::SizeKind>> plan;
-  std::vector<double> targets;
-  for (sizing::SizeKind kind : config.kinds) {
-    plan.emplace_back(sizing::size_kind_name(kind), kind);
-    targets.push_back(config.triangles);
-  }
+  const std::vector<Planned> plan = study_plan(config);
   const bool envelope_series = config.reference == ReferenceKind::envelope;
-  for (int k = 1; k <= config.levels; ++k) {
-    plan.emplace_back(fmt::format("level_{}", k), sizing::SizeKind::uniform);
-    // An envelope level's count is what its sizes predict, known once the compared meshes are made.
-    targets.push_back(envelope_series ? 0.0 : config.triangles * std::pow(config.factor, k));
-  }
   // The envelope series' wall sizes on the input (study/envelope.h), made from the compared meshes'
-  // surfaces once they exist; what they depend on (those surfaces, their interiors) in its key.
-  std::vector<double> envelope;
-  std::vector<double> compared_factors;
-  double envelope_factor = 1.0;
-  std::string envelope_key;
-  const auto make_envelope = [&]() {
-    std::vector<TriMesh> walls;
-    for (const MeshRun& done : result.meshes) {
-      if (done.series) continue;
-      const std::string wall_file = done.folder + "/surface.vtp";
-      walls.push_back(io::read_surface(wall_file).mesh);
-      envelope_key += fmt::format("compared {} {} interior {}\n", done.name, fingerprint(io::read_file(wall_file)),
-                                  done.interior_size);
-      compared_factors.push_back(done.interior_size);
-    }
-    std::vector<const TriMesh*> meshes;
-    for (const TriMesh& w : walls) meshes.push_back(&w);
-    reporter.info(fmt::format("study: the reference's sizes: the least of the {} compared meshes' at each point",
-                              meshes.size()));
-    envelope = envelope_sizes(surface, meshes);
-    envelope_factor = envelope_interior_factor(surface, meshes, compared_factors, envelope);
-  };
-
+  // surfaces once they exist.
+  Envelope envelope;
   int volume_target = 0;  // the first compared mesh's volume nodes, when the others are to have them
   for (size_t m = 0; m < plan.size(); ++m) {
-    const auto& [name, kind] = plan[m];
+    const auto& [name, kind, target] = plan[m];
     MeshRun run;
     run.name = name;
     run.series = name.rfind("level_", 0) == 0;
-    run.target_triangles = targets[m];
+    run.target_triangles = target;
     run.folder = (fs::path(folder) / name).string();
     fs::create_directories(run.folder);
     const int volume_points = run.series ? 0 : volume_target;
     // An envelope level k: its sizes factor^(k-1) finer than the envelope's (the margin beside), its
     // layer and interior too.
     const bool envelope_level = run.series && envelope_series;
-    const double scale = envelope_level_scale(config.factor, static_cast<int>(m + 1 - config.kinds.size()), config.levels);
-    if (envelope_level && envelope.empty()) make_envelope();
+    const double scale =
+        envelope_level_scale(config.factor, static_cast<int>(m + 1 - config.kinds.size()), config.levels);
+    if (envelope_level && envelope.sizes.empty()) envelope = make_envelope(surface, result.meshes, reporter);
     const LevelLayers layer_design =
         envelope_level ? level_layers(config.layers, scale) : LevelLayers{config.layers, 1.0};
     const volume::InteriorSizeOptions interior =
-        envelope_level ? level_interior(config.interior, envelope_factor, scale) : config.interior;
+        envelope_level ? level_interior(config.interior, envelope.interior_factor, scale) : config.interior;
     std::string what = fmt::format("kind={} triangles={} volume points={}\n", sizing::size_kind_name(kind),
                                    run.target_triangles, volume_points);
     if (envelope_level)
       what = fmt::format("envelope level {} scale={} layers={} growth={} interior={} {} {}\n{}", name, scale,
                          layer_design.layers, layer_design.growth, interior.factor, interior.gradation,
-                         interior.core_fraction, envelope_key);
+                         interior.core_fraction, envelope.key);
     const std::string mesh_key = fingerprint(common + what);
     const std::string flow_key = fingerprint(mesh_key + case_text);
     const std::string surface_file = run.folder + "/surface.vtp", volume_file = run.folder + "/volume.msh";
     const std::string flow_dir = run.folder + "/flow", stamp_file = run.folder + "/stamp.json";
     const std::optional<Json> stamp = matching_stamp(stamp_file, flow_key);
     if (stamp && fs::exists(volume_file) && fs::exists(flow_dir + "/wall.pvd")) {
-      const Json& j = *stamp;
-      run.surface_triangles = j["surface_triangles"];
-      run.least_count = j.value("least_count", 0);
-      run.surface_points = j["surface_points"];
-      run.volume_points = j["volume_points"];
-      run.tetrahedra = j["tetrahedra"];
-      run.dofs = j["dofs"];
-      run.min_dihedral = j["min_dihedral"];
-      run.min_dihedral_layer = j.value("min_dihedral_layer", -1.0);
-      run.min_dihedral_interior = j.value("min_dihedral_interior", -1.0);
-      run.min_dihedral_layer_frame = j.value("min_dihedral_layer_frame", -1.0);
-      run.interior_size = j.value("interior_size", config.interior.factor);
-      run.target_triangles = j.value("target_triangles", run.target_triangles);
-      run.layers = j.value("layers", config.layers);
-      run.layer_growth = j.value("layer_growth", 1.0);
-      for (const auto& [k, v] : j["seconds"].items()) run.seconds[k] = v.get<double>();
+      read_stamp(*stamp, config, run);
       run.reused = true;
       reporter.info(fmt::format("study: {} ({} of {}): reused from {}", name, m + 1, plan.size(), stamp_file));
     } else {
@@ -572,7 +724,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       if (envelope_level) {
         reporter.info(fmt::format("study: {} ({} of {}): surface mesh {:.3g} times finer than every compared mesh",
                                   name, m + 1, plan.size(), scale));
-        remeshed = remesh_envelope_level(surface, envelope, scale, options, run.target_triangles, reporter);
+        remeshed = remesh_envelope_level(surface, envelope.sizes, scale, options, run.target_triangles, reporter);
       } else {
         reporter.info(fmt::format("study: {} ({} of {}): surface mesh of about {:.0f} triangles", name, m + 1,
                                   plan.size(), run.target_triangles));
@@ -586,51 +738,15 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
 
       reporter.info(fmt::format("study: {}: volume mesh", name));
       step = Clock::now();
-      const TriMesh& wall = remeshed.mesh;
-      const centerline::DistanceMap wall_distance =
-          centerline::distance_map(wall, centerline::extract(wall, {}, reporter));
-      volume::VolumeOptions vo;
-      vo.layer.layers = layer_design.layers;
-      vo.layer.growth = layer_design.growth;
-      vo.layer.thickness_ratio = config.thickness_ratio;
-      vo.layer.min_angle_deg = config.layer_angle;
-      vo.layer.split_angle_deg = config.layer_split_angle;
-      vo.algorithm = volume::parse_fill_algorithm(config.algorithm);
-      vo.interior = interior;
-      vo.inlet = config.inlet;
-      vo.end_names = config.end_names;
-      vo.end_at = end_at;
-      if (volume_points > 0)
-        reporter.info(fmt::format("study: {}: its volume sized to {} nodes, as the first compared mesh's", name,
-                                  volume_points));
       const volume::VolumeResult volume_mesh =
-          volume_points > 0 ? volume::build_volume_with_points(wall, analysis::open_ends(wall), wall_distance.radius,
-                                                               vo, volume_points, 0.02, reporter)
-                            : volume::build_volume(wall, analysis::open_ends(wall), wall_distance.radius, vo, reporter);
+          make_volume(remeshed.mesh, config, layer_design, interior, end_at, volume_points, name, reporter);
       io::write_msh(volume_file, volume_mesh.mesh);
       const volume::VolumeQuality quality = volume::measure_volume(volume_mesh.mesh, volume_mesh.radius);
       run.seconds["volume"] = since(step);
 
       reporter.info(fmt::format("study: {}: flow", name));
       step = Clock::now();
-      flow::FlowCase fc = base_case;
-      fc.mesh = volume_file;
-      // A flow of this mesh and case stopped before its end (the study killed) goes on from its
-      // checkpoint: the meshes are made again the same, the key names the case.
-      const std::string flow_key_file = flow_dir + "/study_flow_key";
-      const bool resume = !fc.steady && fs::exists(flow_dir + "/checkpoint.bin") && fs::exists(flow_key_file) &&
-                          io::read_file(flow_key_file) == flow_key;
-      if (resume) reporter.info(fmt::format("study: {}: the flow goes on from its checkpoint", name));
-      fs::create_directories(flow_dir);
-      io::write_text(flow_key_file, flow_key);
-      const flow::SimulationSummary s = config.ranks > 1
-                                            ? simulate_under_mpirun(config, volume_file, flow_dir, resume)
-                                            : flow::simulate(fc, flow_dir, "", reporter, resume);
-      if (s.status == "stopped")
-        throw StoppedError(fmt::format("stopped by signal {} in {}'s flow (its checkpoint is kept): run the same "
-                                       "study again to go on",
-                                       s.signal, name),
-                           s.signal);
+      const flow::SimulationSummary s = run_flow(config, base_case, name, volume_file, flow_dir, flow_key, reporter);
       run.seconds["flow"] = since(step);
       run.surface_triangles = remeshed.stats.triangles;
       run.least_count = remeshed.least_count;
@@ -645,33 +761,9 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       run.interior_size = volume_mesh.report.interior_factor;
       run.layers = layer_design.layers;
       run.layer_growth = layer_design.growth;
-      Json j = {{"key", flow_key},
-                {"mesh", name},
-                {"surface_triangles", run.surface_triangles},
-                {"least_count", run.least_count},
-                {"surface_points", run.surface_points},
-                {"volume_points", run.volume_points},
-                {"tetrahedra", run.tetrahedra},
-                {"dofs", run.dofs},
-                {"min_dihedral", run.min_dihedral},
-                {"min_dihedral_layer", run.min_dihedral_layer},
-                {"min_dihedral_interior", run.min_dihedral_interior},
-                {"min_dihedral_layer_frame", run.min_dihedral_layer_frame},
-                {"interior_size", run.interior_size},
-                {"target_triangles", run.target_triangles},
-                {"layers", run.layers},
-                {"layer_growth", run.layer_growth},
-                {"seconds", run.seconds}};
-      io::write_text(stamp_file, j.dump(2) + "\n");
+      io::write_text(stamp_file, stamp_of(run, flow_key).dump(2) + "\n");
     }
-    if (!run.series && std::abs(run.surface_triangles - run.target_triangles) > 0.03 * run.target_triangles) {
-      const std::string warning = fmt::format(
-          "the {} mesh has {} triangles, {:+.1f} % from the {:.0f} asked: the meshes are not of equal size (the "
-          "distance bound of the remesher keeps a coarse mesh from the surface's curves; raise `triangles`{})",
-          name, run.surface_triangles, 100.0 * (run.surface_triangles / run.target_triangles - 1.0),
-          run.target_triangles,
-          run.least_count > 0 ? fmt::format(" to at least {}, the least count the bound allows this kind", run.least_count)
-                              : std::string());
+    if (const std::string warning = unequal_size_warning(run); !warning.empty()) {
       reporter.warning(warning);
       result.warnings.push_back(warning);
     }
@@ -690,38 +782,9 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
     result.warnings.push_back(w);
   }
 
-  // 6. WSS at the chosen time on the rings and points of every mesh.
-  step = Clock::now();
-  const post::WallSeries reference_series = post::read_wall_series(result.meshes.back().folder + "/flow");
-  result.time = config.time.value_or(reference_series.frames.back().time);
-  result.length_unit = reference_series.length_unit;
-  for (MeshRun& run : result.meshes) {
-    const post::WallField wall = post::wall_at_time(post::read_wall_series(run.folder + "/flow"), result.time);
-    for (const post::RingSpec& spec : result.rings) run.rings.push_back(post::cut_ring(wall.mesh, wall.wss, spec));
-    run.points = post::probe_points(wall.mesh, wall.wss, config.points);
-  }
-  if (result.half_step) {
-    MeshRun& half = *result.half_step;
-    const post::WallField wall = post::wall_at_time(post::read_wall_series(half.folder + "/flow"), result.time);
-    for (const post::RingSpec& spec : result.rings) half.rings.push_back(post::cut_ring(wall.mesh, wall.wss, spec));
-    half.points = post::probe_points(wall.mesh, wall.wss, config.points);
-  }
-  result.seconds["wss on rings and points"] = since(step);
-
-  // Whole-wall measures (study/wall_difference.h): each mesh's WSS, TAWSS and OSI on the reference's wall.
-  step = Clock::now();
-  reporter.info("study: every mesh's wall fields on the reference's wall");
-  measure_whole_wall(result, reference_series);
-  result.seconds["whole-wall differences"] = since(step);
-
-  // What every mesh resolves at each ring and point (study/resolution.h).
-  step = Clock::now();
-  reporter.info("study: the meshes' resolution at the rings and points");
-  result.places = measured_places(surface, distance.radius, result.rings, config.points);
-  for (MeshRun& run : result.meshes)
-    run.resolution = measure_resolution(io::read_surface(run.folder + "/surface.vtp").mesh,
-                                        io::read_volume(run.folder + "/volume.msh"), result.places);
-  result.seconds["resolution at the rings and points"] = since(step);
+  // 6. WSS at the chosen time on the rings and points of every mesh; over the whole wall; what each
+  // mesh resolves at each ring and point.
+  measure_meshes(result, config, surface, distance, reporter);
 
   // 7. The report (the total it states stops before it).
   result.seconds["total before the report"] = since(start);

@@ -79,6 +79,17 @@ std::string uncertainty(const GridConvergence& g) {
 }
 
 // A least dihedral angle in a table cell ("-": no such cells, or not measured).
+// The envelope series' scales, level by level ("1.1, 1.46 and 1.95 (levels 1 to 3)").
+std::string envelope_scales(const StudyConfig& config) {
+  std::vector<std::string> scales;
+  for (int k = 1; k <= config.levels; ++k)
+    scales.push_back(fmt::format("{:.3g}", envelope_level_scale(config.factor, k, config.levels)));
+  if (scales.size() == 1) return scales[0] + " (its one level)";
+  const std::string last = scales.back();
+  scales.pop_back();
+  return fmt::format("{} and {} (levels 1 to {})", fmt::join(scales, ", "), last, config.levels);
+}
+
 std::string angle(double degrees) { return degrees >= 0.0 ? number(degrees, 3) : "-"; }
 
 // Issue 27's bounds on the meshes the study compares and refers to: 5 degrees in the boundary
@@ -180,37 +191,8 @@ void view_section(Document& doc, const StudyConfig& config, const std::vector<co
   doc.html += "<p>" + xml_escape(about) + "</p>\n" + block;
 }
 
-}  // namespace
-
-void write_report(const StudyConfig& config, StudyResult& result, const std::string& folder, const Reporter& reporter) {
-  reporter.info("study: report");
-  fs::create_directories(folder + "/figures");
-  const std::vector<MeshRun>& meshes = result.meshes;
-  const MeshRun& reference = meshes[result.reference];
-  const std::string& unit = result.length_unit;
-  Document doc;
-  doc.folder = folder;
-  doc.html = "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>vesselmesh mesh-impact study</title>\n"
-             "<style>body{font-family:sans-serif;max-width:980px;margin:2em auto;padding:0 1em}"
-             "table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:3px 8px;text-align:right}"
-             "figure{margin:1em 0}figcaption{font-style:italic}pre{background:#f4f4f4;padding:.6em}</style>"
-             "</head><body>\n";
-  doc.heading("Impact of the mesh on wall shear stress", 1);
-  doc.paragraph(fmt::format(
-      "Vessel: {}. Flow case: {}. WSS read at t = {:g} s. Reference: {} (the finest of the {}). Lengths in {}, "
-      "stresses in Pa. vesselmesh {}.",
-      config.surface, config.flow_case, result.time, reference.name,
-      config.reference == ReferenceKind::envelope
-          ? fmt::format("envelope series: level k's wall sizes the least of the compared meshes' achieved sizes at "
-                        "each point divided by {:g} x {:g}^{}, its first layer height and interior likewise",
-                        kEnvelopeMargin, config.factor, config.levels >= 3 ? "(k-1)" : "k")
-          : "uniform refinement series",
-      unit, VESSELMESH_VERSION));
-
-  for (const std::string& w : result.warnings) doc.paragraph("Warning: " + w + ".");
-  // The summary goes here, made once every difference is known.
-  const size_t summary_markdown = doc.markdown.size(), summary_html = doc.html.size();
-  std::vector<Ranked> ranked;
+// Table 1: each mesh's counts, layers and least angles, and the verdict on the angles.
+void meshes_table(Document& doc, const std::vector<MeshRun>& meshes) {
   doc.heading("Table 1: the meshes");
   std::vector<std::vector<std::string>> rows;
   for (const MeshRun& m : meshes)
@@ -229,9 +211,12 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
              "least dihedral, interior (deg)"},
             rows);
   doc.paragraph(dihedral_verdict(meshes));
-  const Json resolution = resolution_section(doc, result);
+}
 
-  // Fig. 11: WSS along each ring.
+// Fig. 11: WSS along each ring, the refinement series and the compared meshes against the reference.
+void ring_charts(Document& doc, const StudyConfig& config, const StudyResult& result) {
+  const std::vector<MeshRun>& meshes = result.meshes;
+  const std::string& unit = result.length_unit;
   for (size_t r = 0; r < result.rings.size(); ++r) {
     const std::string& ring = result.rings[r].name;
     doc.heading(fmt::format("WSS along ring {}", ring));
@@ -259,19 +244,97 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
     }
   }
 
-  // Figs. 12-14: relative differences against the reference.
-  Json numbers = Json::array();
-  const auto difference_chart = [&](const std::string& title) {
-    BarChart chart;
-    chart.title = title;
-    chart.y_label = "difference from the reference (%)";
-    for (const MeshRun& m : meshes)
-      if (&m != &reference) chart.categories.push_back(m.name);
-    return chart;
-  };
-  // The reference's own uncertainty: Richardson extrapolation and the GCI over the uniform
-  // family's three finest meshes (Celik et al. 2008), for each ring's minimum and mean and each point.
-  const std::vector<const MeshRun*> grids = convergence_grids(config, meshes);
+}
+
+// A bar chart of differences from the reference, a category per other mesh (Figs. 12-14).
+BarChart difference_chart(const StudyResult& result, const std::string& title) {
+  BarChart chart;
+  chart.title = title;
+  chart.y_label = "difference from the reference (%)";
+  for (size_t m = 0; m < result.meshes.size(); ++m)
+    if (static_cast<int>(m) != result.reference) chart.categories.push_back(result.meshes[m].name);
+  return chart;
+}
+
+// The reference's grid convergence: per ring its minimum's and mean's, per point its value's, and
+// the rows study.json keeps (empty when the series has no three levels).
+struct Convergence {
+  std::vector<GridConvergence> ring_min, ring_mean, point;
+  Json json = Json::array();
+  bool known() const { return !json.empty(); }
+};
+
+// Pointwise along each ring: the three levels' profiles on a common angle (or length fraction),
+// the reference's GCI band and the extrapolated profile where the series converges.
+void ring_profiles(Document& doc, const StudyResult& result, const std::vector<const MeshRun*>& grids, Json& convergence) {
+  constexpr int kProfile = 360;
+  std::vector<std::vector<std::string>> profile_rows;
+  for (size_t r = 0; r < result.rings.size(); ++r) {
+    std::array<std::vector<double>, 3> profile;
+    bool closed = true;
+    for (int k = 0; k < 3; ++k) {
+      profile[k] = post::resampled_magnitude(grids[k]->rings[r], kProfile);
+      closed = closed && grids[k]->rings[r].closed;
+    }
+    if (!closed)  // one open: all by length fraction
+      for (int k = 0; k < 3; ++k) {
+        post::Ring open = grids[k]->rings[r];
+        open.closed = false;
+        profile[k] = post::resampled_magnitude(open, kProfile);
+      }
+    LineChart chart;
+    chart.title = fmt::format("Ring {}: the reference and its uncertainty (t = {:g} s)", result.rings[r].name,
+                              result.time);
+    chart.x_label = closed ? "angle (deg)" : "fraction of the ring's length";
+    chart.y_label = "wall shear stress magnitude (Pa)";
+    chart.y_from_zero = true;
+    Series ref{grids[0]->name + " (reference)", {}, {}, false}, low{"- GCI", {}, {}, true},
+        high{"+ GCI", {}, {}, true}, ext{"extrapolated", {}, {}, true};
+    std::vector<double> gcis;
+    int found = 0;
+    for (int i = 0; i < kProfile; ++i) {
+      const double x = closed ? 360.0 * i / kProfile : static_cast<double>(i) / kProfile;
+      const GridConvergence g = grid_convergence(grids[0]->volume_points, grids[1]->volume_points,
+                                                 grids[2]->volume_points, profile[0][i], profile[1][i],
+                                                 profile[2][i]);
+      for (Series* sr : {&ref, &low, &high, &ext}) sr->x.push_back(x);
+      ref.y.push_back(profile[0][i]);
+      low.y.push_back(g.found ? profile[0][i] - g.band() : NAN);
+      high.y.push_back(g.found ? profile[0][i] + g.band() : NAN);
+      ext.y.push_back(g.found ? g.extrapolated : NAN);
+      if (g.found) {
+        ++found;
+        gcis.push_back(100 * g.gci_fine);
+      }
+    }
+    chart.series = {ref, low, high, ext};
+    doc.figure(fmt::format("ring_{}_uncertainty", result.rings[r].name), svg(chart),
+               fmt::format("WSS along ring {} on the reference with its GCI band and the extrapolated profile, where "
+                           "the series converges (gaps where it does not)",
+                           result.rings[r].name));
+    std::sort(gcis.begin(), gcis.end());
+    const auto quantile = [&](double q) {
+      return gcis.empty() ? NAN : gcis[static_cast<size_t>(q * static_cast<double>(gcis.size() - 1))];
+    };
+    profile_rows.push_back({result.rings[r].name, fmt::format("{:.0f} %", 100.0 * found / kProfile),
+                            number(quantile(0.5), 3) + " %", number(quantile(0.9), 3) + " %"});
+    convergence.push_back({{"quantity", fmt::format("ring {}: profile", result.rings[r].name)},
+                           {"positions", kProfile},
+                           {"converging_share", static_cast<double>(found) / kProfile},
+                           {"gci_fine_percent_median", std::isfinite(quantile(0.5)) ? Json(quantile(0.5)) : Json(nullptr)},
+                           {"gci_fine_percent_90th", std::isfinite(quantile(0.9)) ? Json(quantile(0.9)) : Json(nullptr)}});
+  }
+  if (!profile_rows.empty())
+    doc.table({"ring profile", "positions where the series converges", "GCI_fine, median there",
+               "GCI_fine, 90th percentile there"},
+              profile_rows);
+}
+
+// The reference's own uncertainty: Richardson extrapolation and the GCI over the series' three finest
+// meshes (Celik et al. 2008), for each ring's minimum and mean and each point.
+Convergence convergence_section(Document& doc, const StudyConfig& config, const StudyResult& result,
+                                const std::vector<const MeshRun*>& grids) {
+  const MeshRun& reference = result.meshes[result.reference];
   std::vector<GridConvergence> ring_min_gci(result.rings.size()), ring_mean_gci(result.rings.size()),
       point_gci(config.points.size());
   Json convergence = Json::array();
@@ -321,68 +384,7 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
                "extrapolated", "GCI_fine (or the series' spread)", "asymptotic ratio", "convergence"},
               gci_rows);
 
-    // Pointwise along each ring: the three profiles on a common angle (or length fraction).
-    constexpr int kProfile = 360;
-    std::vector<std::vector<std::string>> profile_rows;
-    for (size_t r = 0; r < result.rings.size(); ++r) {
-      std::array<std::vector<double>, 3> profile;
-      bool closed = true;
-      for (int k = 0; k < 3; ++k) {
-        profile[k] = post::resampled_magnitude(grids[k]->rings[r], kProfile);
-        closed = closed && grids[k]->rings[r].closed;
-      }
-      if (!closed)  // one open: all by length fraction
-        for (int k = 0; k < 3; ++k) {
-          post::Ring open = grids[k]->rings[r];
-          open.closed = false;
-          profile[k] = post::resampled_magnitude(open, kProfile);
-        }
-      LineChart chart;
-      chart.title = fmt::format("Ring {}: the reference and its uncertainty (t = {:g} s)", result.rings[r].name,
-                                result.time);
-      chart.x_label = closed ? "angle (deg)" : "fraction of the ring's length";
-      chart.y_label = "wall shear stress magnitude (Pa)";
-      chart.y_from_zero = true;
-      Series ref{grids[0]->name + " (reference)", {}, {}, false}, low{"- GCI", {}, {}, true},
-          high{"+ GCI", {}, {}, true}, ext{"extrapolated", {}, {}, true};
-      std::vector<double> gcis;
-      int found = 0;
-      for (int i = 0; i < kProfile; ++i) {
-        const double x = closed ? 360.0 * i / kProfile : static_cast<double>(i) / kProfile;
-        const GridConvergence g = grid_convergence(grids[0]->volume_points, grids[1]->volume_points,
-                                                   grids[2]->volume_points, profile[0][i], profile[1][i],
-                                                   profile[2][i]);
-        for (Series* sr : {&ref, &low, &high, &ext}) sr->x.push_back(x);
-        ref.y.push_back(profile[0][i]);
-        low.y.push_back(g.found ? profile[0][i] - g.band() : NAN);
-        high.y.push_back(g.found ? profile[0][i] + g.band() : NAN);
-        ext.y.push_back(g.found ? g.extrapolated : NAN);
-        if (g.found) {
-          ++found;
-          gcis.push_back(100 * g.gci_fine);
-        }
-      }
-      chart.series = {ref, low, high, ext};
-      doc.figure(fmt::format("ring_{}_uncertainty", result.rings[r].name), svg(chart),
-                 fmt::format("WSS along ring {} on the reference with its GCI band and the extrapolated profile, where "
-                             "the series converges (gaps where it does not)",
-                             result.rings[r].name));
-      std::sort(gcis.begin(), gcis.end());
-      const auto quantile = [&](double q) {
-        return gcis.empty() ? NAN : gcis[static_cast<size_t>(q * static_cast<double>(gcis.size() - 1))];
-      };
-      profile_rows.push_back({result.rings[r].name, fmt::format("{:.0f} %", 100.0 * found / kProfile),
-                              number(quantile(0.5), 3) + " %", number(quantile(0.9), 3) + " %"});
-      convergence.push_back({{"quantity", fmt::format("ring {}: profile", result.rings[r].name)},
-                             {"positions", kProfile},
-                             {"converging_share", static_cast<double>(found) / kProfile},
-                             {"gci_fine_percent_median", std::isfinite(quantile(0.5)) ? Json(quantile(0.5)) : Json(nullptr)},
-                             {"gci_fine_percent_90th", std::isfinite(quantile(0.9)) ? Json(quantile(0.9)) : Json(nullptr)}});
-    }
-    if (!profile_rows.empty())
-      doc.table({"ring profile", "positions where the series converges", "GCI_fine, median there",
-                 "GCI_fine, 90th percentile there"},
-                profile_rows);
+    ring_profiles(doc, result, grids, convergence);
   } else {
     doc.heading("The reference's uncertainty (grid convergence)");
     doc.paragraph(config.reference == ReferenceKind::uniform
@@ -392,17 +394,26 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
                       : "Not estimated: it needs three levels of the envelope series ([reference] levels >= 3). "
                         "Without it, a difference from the reference cannot be told from the reference's own error.");
   }
-  const bool have_gci = !convergence.empty();
+  return {ring_min_gci, ring_mean_gci, point_gci, convergence};
+}
 
+// Each ring's minimum WSS against the reference's, per mesh: a row each in `numbers`, a ranked
+// quantity each in `ranked`.
+void ring_minimum_section(Document& doc, const StudyResult& result, const Convergence& gci, Json& numbers,
+                          std::vector<Ranked>& ranked) {
+  const std::vector<MeshRun>& meshes = result.meshes;
+  const MeshRun& reference = meshes[result.reference];
+  const std::string& unit = result.length_unit;
+  const bool have_gci = gci.known();
   if (!result.rings.empty()) {
     doc.heading("Minimum WSS on each ring against the reference");
-    BarChart chart = difference_chart("Relative difference of the minimum WSS on each ring");
+    BarChart chart = difference_chart(result, "Relative difference of the minimum WSS on each ring");
     std::vector<std::vector<std::string>> table;
     std::vector<std::string> beyond, within, unknown, unresolved;
     for (size_t r = 0; r < result.rings.size(); ++r) {
       const post::Ring& ref_ring = reference.rings[r];
       const double ref_min = ref_ring.samples[ref_ring.minimum].magnitude, ref_mean = ring_mean(ref_ring);
-      const GridConvergence& g = ring_min_gci[r];
+      const GridConvergence& g = gci.ring_min[r];
       BarSeries s{"ring " + result.rings[r].name, {}};
       // The reference's uncertainty over its ring's mean, as the differences the summary ranks by.
       Ranked rank{fmt::format("ring {}: minimum", result.rings[r].name), {}, NAN, "not estimated", {}, false};
@@ -479,13 +490,21 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
           "the reference ring's mean WSS, which stays meaningful where the minimum is near zero.",
           listed(beyond), listed(within), listed(unknown), kOutResolves, listed(unresolved)));
   }
+}
+
+// The WSS at each point against the reference's, per mesh.
+void point_section(Document& doc, const StudyConfig& config, const StudyResult& result, const Convergence& gci,
+                   Json& numbers, std::vector<Ranked>& ranked) {
+  const std::vector<MeshRun>& meshes = result.meshes;
+  const MeshRun& reference = meshes[result.reference];
+  const bool have_gci = gci.known();
   if (!config.points.empty()) {
     doc.heading("WSS at the points against the reference");
-    BarChart chart = difference_chart("Relative difference of the WSS at each point");
+    BarChart chart = difference_chart(result, "Relative difference of the WSS at each point");
     std::vector<std::vector<std::string>> table;
     for (size_t p = 0; p < config.points.size(); ++p) {
       const double ref = reference.points[p].value.norm();
-      const GridConvergence& g = point_gci[p];
+      const GridConvergence& g = gci.point[p];
       BarSeries s{"point " + config.points[p].name, {}};
       Ranked rank{"point " + config.points[p].name, {}, have_gci && g.found ? 100.0 * g.gci_fine : NAN,
                   have_gci ? uncertainty(g) : "not estimated", {}, false};
@@ -524,15 +543,21 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
                "beyond the reference's uncertainty"},
               table);
   }
-  const Json whole_wall = whole_wall_section(doc, result, grids, ranked);
-  const Json time_step = time_step_section(doc, config, result, result.time_step);
+}
 
+// The summary, read first, put in `doc` at (markdown_at, html_at): the compared meshes ranked per
+// quantity (closest to the reference first), with the reference's uncertainty, then their mean place
+// and their cost.
+Json summary_section(Document& doc, size_t markdown_at, size_t html_at, const StudyResult& result,
+                     std::vector<Ranked>& ranked) {
+  const std::vector<MeshRun>& meshes = result.meshes;
+  const MeshRun& reference = meshes[result.reference];
   // The summary, read first: the compared meshes ranked per quantity (closest to the reference
   // first), with the reference's uncertainty, then their mean place and their cost.
   Json summary;
   {
     Document top;
-    top.folder = folder;
+    top.folder = doc.folder;
     top.heading("Summary");
     Json rankings = Json::array();
     std::map<std::string, std::vector<int>> places;  // per compared mesh, its place per quantity
@@ -625,12 +650,19 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
     if (!on_wall.empty())
       top.paragraph(fmt::format("Closest on the whole-wall measures alone: {} (mean place {:.2f}).",
                                 fmt::join(closest_on_wall, " and "), on_wall.front().first));
-    doc.markdown.insert(summary_markdown, top.markdown);
-    doc.html.insert(summary_html, top.html);
+    doc.markdown.insert(markdown_at, top.markdown);
+    doc.html.insert(html_at, top.html);
     summary = {{"rankings", rankings}, {"mean_place", means},
                {"closest_on_average", closest}, {"closest_on_whole_wall", closest_on_wall}};
   }
 
+  return summary;
+}
+
+// Pictures: the compared surface meshes, the WSS field on them and on the reference, and the 3D view.
+void pictures_section(Document& doc, const StudyConfig& config, const StudyResult& result, const Reporter& reporter) {
+  const std::vector<MeshRun>& meshes = result.meshes;
+  const MeshRun& reference = meshes[result.reference];
   // Pictures: the compared surface meshes, and the WSS field on them and on the reference.
   doc.heading("The surface meshes");
   const std::optional<Vec3> view;
@@ -675,8 +707,13 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
                            pictured[k]->name, o.high));
   }
 
-  view_section(doc, config, pictured, walls, high, broadside, unit, reporter);
+  view_section(doc, config, pictured, walls, high, broadside, result.length_unit, reporter);
 
+}
+
+// The stage times, per mesh and per step of the study.
+void timings_section(Document& doc, const StudyResult& result) {
+  const std::vector<MeshRun>& meshes = result.meshes;
   doc.heading("Timings");
   std::vector<std::vector<std::string>> timing;
   for (const MeshRun& m : meshes) {
@@ -692,6 +729,57 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
   std::vector<std::vector<std::string>> steps;
   for (const auto& [name, s] : result.seconds) steps.push_back({name, number(s, 3)});
   doc.table({"step", "seconds"}, steps);
+
+}
+
+}  // namespace
+
+void write_report(const StudyConfig& config, StudyResult& result, const std::string& folder, const Reporter& reporter) {
+  reporter.info("study: report");
+  fs::create_directories(folder + "/figures");
+  const std::vector<MeshRun>& meshes = result.meshes;
+  const MeshRun& reference = meshes[result.reference];
+  const std::string& unit = result.length_unit;
+  Document doc;
+  doc.folder = folder;
+  doc.html = "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>vesselmesh mesh-impact study</title>\n"
+             "<style>body{font-family:sans-serif;max-width:980px;margin:2em auto;padding:0 1em}"
+             "table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:3px 8px;text-align:right}"
+             "figure{margin:1em 0}figcaption{font-style:italic}pre{background:#f4f4f4;padding:.6em}</style>"
+             "</head><body>\n";
+  doc.heading("Impact of the mesh on wall shear stress", 1);
+  doc.paragraph(fmt::format(
+      "Vessel: {}. Flow case: {}. WSS read at t = {:g} s. Reference: {} (the finest of the {}). Lengths in {}, "
+      "stresses in Pa. vesselmesh {}.",
+      config.surface, config.flow_case, result.time, reference.name,
+      config.reference == ReferenceKind::envelope
+          ? fmt::format("envelope series: level k's wall sizes the least of the compared meshes' achieved sizes at "
+                        "each point divided by {}, its first layer height and interior likewise",
+                        envelope_scales(config))
+          : "uniform refinement series",
+      unit, VESSELMESH_VERSION));
+
+  for (const std::string& w : result.warnings) doc.paragraph("Warning: " + w + ".");
+  // The summary goes here, made once every difference is known.
+  const size_t summary_markdown = doc.markdown.size(), summary_html = doc.html.size();
+  std::vector<Ranked> ranked;
+  meshes_table(doc, meshes);
+  const Json resolution = resolution_section(doc, result);
+
+  ring_charts(doc, config, result);
+
+  const std::vector<const MeshRun*> grids = convergence_grids(config, meshes);
+  const Convergence gci = convergence_section(doc, config, result, grids);
+  // Figs. 12-14: relative differences against the reference.
+  Json numbers = Json::array();
+  ring_minimum_section(doc, result, gci, numbers, ranked);
+  point_section(doc, config, result, gci, numbers, ranked);
+  const Json whole_wall = whole_wall_section(doc, result, grids, ranked);
+  const Json time_step = time_step_section(doc, config, result, result.time_step);
+
+  const Json summary = summary_section(doc, summary_markdown, summary_html, result, ranked);
+  pictures_section(doc, config, result, reporter);
+  timings_section(doc, result);
 
   doc.heading("Version and options");
   doc.paragraph(fmt::format("vesselmesh {} (built with {}). The study file {}:", VESSELMESH_VERSION,
@@ -734,7 +822,7 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
   }
   j["meshes"] = list;
   j["differences"] = numbers;
-  j["grid_convergence"] = convergence;
+  j["grid_convergence"] = gci.json;
   j["reference_kind"] = reference_kind_name(config.reference);
   j["whole_wall"] = whole_wall;
   j["time_step"] = time_step;
