@@ -34,15 +34,11 @@ compare="$build/bench/bench_fda_nozzle"
 mkdir -p "$out"
 rm -rf "$out/experiment"
 unzip -q -o "$zip" -d "$out"
-# Inlet pipe 30 mm (the first pressure tap is at z = -90.32 mm, the inlet at -92.685 mm), outlet
-# pipe 100 mm (the last velocity station at +80 mm).
-"$vm" synth nozzle --inlet-length 30 --outlet-length 100 --resolution 0.3 -o "$out/nozzle.vtp" -q
-"$vm" size "$out/nozzle.vtp" -o "$out/size.vtp" --size distance --points-per-circle "$ppc" --hmax "$hmax" -q
-"$vm" remesh "$out/nozzle.vtp" --metric "$out/size.vtp" -o "$out/surface.vtp" -q
+# shellcheck source=bench/nozzle_case.sh
+source "$here/nozzle_case.sh"
 refine=()
 if [[ -n "${JET:-}" ]]; then refine=(--refine "0,0,-1:0,0,85:3:$JET"); fi
-"$vm" volume "$out/surface.vtp" -o "$out/volume.msh" --end inlet:0,0,-92.685 --end outlet:0,0,100 \
-  --algorithm tetgen "${refine[@]}"
+nozzle_mesh "$vm" "$out" "$ppc" "$hmax" "${refine[@]}"
 if [[ -n "${STEADY:-}" ]]; then
   time_section=$'[time]\nsteady = true                # Newton\'s method, its inflow in stages\nsteady_iterations = 40'
 else
@@ -53,26 +49,7 @@ end = $end
 save_every = $(python3 -c "print(max(1, round($end / $dt / 5)))")
 initial = \"stokes\"           # the developed pipe flow from the start; the jet grows in time"
 fi
-cat > "$out/case.toml" <<TOML
-# FDA nozzle, sudden expansion, Re_throat = 500 (fluid and flow rate of the FDA's data files)
-mesh = "volume.msh"
-length_unit = "mm"
-[fluid]
-density = 1056.0
-viscosity = 0.0035
-$time_section
-[[boundary]]
-tag = "inlet"
-type = "velocity"
-profile = "parabolic"
-flow = 5.20624               # mL/s
-[[boundary]]
-tag = "outlet"
-type = "traction"
-[[boundary]]
-tag = "wall"
-type = "wall"
-TOML
+write_nozzle_case "$out/case.toml" "$time_section"
 run=("$vm" simulate "$out/case.toml" -o "$out/flow")
 if [[ -n "${NP:-}" ]]; then run=(mpirun --allow-run-as-root -np "$NP" "${run[@]}"); fi
 if [[ -x /usr/bin/time ]]; then run=(/usr/bin/time -f "simulate: %e s wall, %M KB peak" "${run[@]}"); fi

@@ -64,6 +64,8 @@ SolveStats LinearSolver::solve_assembled_direct(const std::vector<double>& rhs, 
 
 void LinearSolver::reuse_preconditioner(bool on) { petsc_calls().reuse_preconditioner(*impl_->inside, on); }
 void LinearSolver::rebuild_preconditioner() { petsc_calls().rebuild_preconditioner(*impl_->inside); }
+void LinearSolver::keep_solutions(int count) { petsc_calls().keep_solutions(*impl_->inside, count); }
+void LinearSolver::forget_solutions() { petsc_calls().forget_solutions(*impl_->inside); }
 void LinearSolver::set_low_rank_columns(const std::vector<std::vector<double>>& columns) {
   petsc_calls().set_low_rank_columns(*impl_->inside, columns);
 }

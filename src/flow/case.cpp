@@ -6,6 +6,7 @@
 #include "mesh/error.h"
 #include "post/wss.h"
 
+#include <Eigen/SparseCholesky>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -19,6 +20,29 @@ namespace vesselmesh::flow {
 Waveform::Waveform(std::vector<double> times, std::vector<double> values)
     : times_(std::move(times)), values_(std::move(values)) {
   VM_CHECK(times_.size() == values_.size() && !times_.empty(), "waveform samples");
+  const int n = static_cast<int>(times_.size()) - 1;  // intervals
+  double largest = 0.0;
+  for (double v : values_) largest = std::max(largest, std::abs(v));
+  if (n < 2 || std::abs(values_.back() - values_.front()) > 1e-9 * largest) return;
+  // The periodic spline's second derivatives M_0 .. M_(n-1) (M_n = M_0): at each sample i,
+  // h_(i-1)/6 M_(i-1) + (h_(i-1) + h_i)/3 M_i + h_i/6 M_(i+1) = slope_i - slope_(i-1), the indices
+  // round the period (symmetric, positive definite).
+  const auto h = [&](int i) { return times_[(i + n) % n + 1] - times_[(i + n) % n]; };
+  const auto slope = [&](int i) { return (values_[(i + n) % n + 1] - values_[(i + n) % n]) / h(i); };
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::VectorXd rhs(n);
+  for (int i = 0; i < n; ++i) {
+    entries.emplace_back(i, (i + n - 1) % n, h(i - 1) / 6.0);
+    entries.emplace_back(i, i, (h(i - 1) + h(i)) / 3.0);
+    entries.emplace_back(i, (i + 1) % n, h(i) / 6.0);
+    rhs[i] = slope(i) - slope(i - 1);
+  }
+  Eigen::SparseMatrix<double> a(n, n);
+  a.setFromTriplets(entries.begin(), entries.end());  // (n = 2: a neighbour both sides, summed)
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factors(a);
+  const Eigen::VectorXd m = factors.solve(rhs);
+  curvature_.assign(m.data(), m.data() + n);
+  curvature_.push_back(curvature_.front());
 }
 
 Waveform Waveform::constant(double value) { return Waveform({0.0}, {value}); }
@@ -69,13 +93,17 @@ double Waveform::operator()(double t) const {
   s += t0;
   const auto it = std::upper_bound(times_.begin(), times_.end(), s);
   const size_t j = std::clamp<size_t>(static_cast<size_t>(it - times_.begin()), 1, times_.size() - 1);
-  const double w = (s - times_[j - 1]) / (times_[j] - times_[j - 1]);
-  return (1.0 - w) * values_[j - 1] + w * values_[j];
+  const double h = times_[j] - times_[j - 1], w = (s - times_[j - 1]) / h;
+  const double line = (1.0 - w) * values_[j - 1] + w * values_[j];
+  if (curvature_.empty()) return line;
+  // The cubic with second derivatives M_(j-1) and M_j at the interval's ends, through its samples.
+  return line - h * h / 6.0 * w * (1.0 - w) * ((2.0 - w) * curvature_[j - 1] + (1.0 + w) * curvature_[j]);
 }
 
 Waveform Waveform::scaled(double factor) const {
   Waveform out = *this;
   for (double& v : out.values_) v *= factor;
+  for (double& m : out.curvature_) m *= factor;
   return out;
 }
 
@@ -246,9 +274,10 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
 
   const io::TomlView solver = root["solver"];
   if (solver && !solver.is_table()) r.fail("solver", "expected a table [solver]");
-  if (solver) r.known_keys(*solver.as_table(), "solver", {"petsc_options", "reuse_preconditioner", "threads"});
+  if (solver) r.known_keys(*solver.as_table(), "solver", {"petsc_options", "reuse_preconditioner", "kept_solutions", "threads"});
   c.petsc_options = r.text(solver["petsc_options"], "solver.petsc_options", "");
   c.reuse_preconditioner = r.flag(solver["reuse_preconditioner"], "solver.reuse_preconditioner", true);
+  c.kept_solutions = r.integer(solver["kept_solutions"], "solver.kept_solutions", c.kept_solutions, 0);
   c.threads = r.integer(solver["threads"], "solver.threads", 0, 0);
 
   const io::TomlView output = root["output"];

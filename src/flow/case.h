@@ -27,7 +27,9 @@
 // or from the Stokes flow of the conditions at t = 0); [boundary] backflow (the traction boundaries' backflow
 // stabilization coefficient, default 1); [solver] reuse_preconditioner = true | false (time steps
 // keep the linear solver's preconditioner while it serves, LinearSolver::reuse_preconditioner;
-// default true), threads = N (the assembly's threads in each process; default 0: the machine's
+// default true), kept_solutions = N (time steps' solves start from the least-residual combination
+// of their guess and the last N solutions, LinearSolver::keep_solutions; default 4, 0: the
+// extrapolated guess alone), threads = N (the assembly's threads in each process; default 0: the machine's
 // cores on one process, one under MPI; the result is the same whatever N); [output] wss_method = "quadratic" | "face" (how the
 // wall shear stress is taken from the velocity, post/wss.h; default quadratic), checkpoint_every
 // = N (unsteady runs: a checkpoint, flow/checkpoint.h, every N steps, default save_every; 0:
@@ -44,7 +46,12 @@
 
 namespace vesselmesh::flow {
 
-// A flow rate in time: linear between samples, repeated with `period` (the samples' span).
+// A flow rate in time, repeated with `period` (the samples' span). Samples that close the period
+// (the last value the first's, within 1e-9 of the largest) are joined by the periodic cubic
+// spline through them: its rate of change, which an inlet's pressure follows, continuous, where
+// straight lines between samples 10 ms apart made the anastomosis study's inlet pressure jump
+// +-9 Pa from one 5 ms step to the next (of about 50 at peak flow). Others, linear between samples
+// (the period's end a jump in any case).
 class Waveform {
  public:
   Waveform() = default;
@@ -57,9 +64,11 @@ class Waveform {
   Waveform scaled(double factor) const;
   double period() const { return times_.size() < 2 ? 0.0 : times_.back() - times_.front(); }
   int samples() const { return static_cast<int>(times_.size()); }
+  bool smooth() const { return !curvature_.empty(); }  // the periodic spline, not straight lines
 
  private:
   std::vector<double> times_, values_;
+  std::vector<double> curvature_;  // the spline's second derivative at each sample (empty: linear)
 };
 
 enum class BoundaryType { velocity, traction, resistance, rcr, wall };
@@ -104,6 +113,7 @@ struct FlowCase {
   std::vector<BoundaryCondition> boundaries;
   std::string petsc_options;
   bool reuse_preconditioner = true;  // [solver]: time steps keep the preconditioner while it serves
+  int kept_solutions = 4;  // [solver]: time steps start from the best combination of the last N (LinearSolver::keep_solutions)
   int threads = 0;  // [solver]: the assembly's threads a process; 0: the cores on one process, 1 under MPI
   std::string wss_method = "quadratic";  // post::parse_wss_method
   int checkpoint_every = 10;             // [output]: steps (default save_every); 0: at the end, on a signal

@@ -101,6 +101,13 @@ struct LinearSolver::Impl {
   std::vector<Vec> low_rank;
   std::vector<PetscScalar> low_rank_c;
   Mat whole = nullptr;
+  // keep_solutions: the last solutions (newest first, at most keep_count), and the work vectors of
+  // the initial guess's projection on them (their products with A, the caller's guess).
+  int keep_count = 0;
+  std::vector<Vec> kept, products;
+  void project_guess(double rtol);  // the loaded initial guess replaced by its least-residual combination
+  void keep_solution();
+  void forget_solutions();
   // The operator the Krylov methods and the residual apply: the shell, or the matrix.
   Mat op() const { return whole ? whole : matrix; }
   static PetscErrorCode low_rank_product(Mat shell, Vec x, Vec y);
@@ -128,6 +135,7 @@ struct LinearSolver::Impl {
     if (converted) MatDestroy(&converted);
     if (whole) MatDestroy(&whole);
     for (Vec& v : low_rank) VecDestroy(&v);
+    forget_solutions();
     if (schur) MatDestroy(&schur);
     if (matrix) MatDestroy(&matrix);
     for (auto& row : blocks)
@@ -556,6 +564,96 @@ PetscReal LinearSolver::Impl::residual_norm() const {
   return residual;
 }
 
+void LinearSolver::Impl::project_guess(double rtol) {
+  if (kept.empty()) return;
+  const int k = 1 + static_cast<int>(kept.size());
+  while (static_cast<int>(products.size()) < k + 1) {
+    Vec v = nullptr;
+    check(VecDuplicate(solution, &v), "VecDuplicate");
+    products.push_back(v);
+  }
+  Vec guess = products[k];
+  check(VecCopy(solution, guess), "VecCopy");
+  const auto basis = [&](int j) { return j == 0 ? guess : kept[j - 1]; };
+  // The guess's residual first: where it is within kProjectAbove times the tolerance the
+  // combination is not tried (on the benchmark pipe's settling flow, 30 times, it cut the residual
+  // 3-5 fold and the solves took 6 iterations where they took 4: what it leaves is in the modes the
+  // preconditioner takes slowest, and its products with A cost a third of the solve).
+  PetscScalar b_b = 0.0, b_a = 0.0, a_a = 0.0;
+  check(MatMult(op(), guess, products[0]), "MatMult");
+  check(VecDot(rhs, rhs, &b_b), "VecDot");
+  check(VecDot(rhs, products[0], &b_a), "VecDot");
+  check(VecDot(products[0], products[0], &a_a), "VecDot");
+  const PetscScalar guess_left = b_b - 2.0 * b_a + a_a;  // ||b - A g||^2
+  if (guess_left < kProjectAbove * kProjectAbove * rtol * rtol * b_b) return;
+  // The products of the guess and the kept solutions with A made orthonormal (modified
+  // Gram-Schmidt, twice: successive solutions are nearly parallel); a product left with less than
+  // 1e-10 of its norm adds nothing and is dropped.
+  std::vector<PetscScalar> r(static_cast<size_t>(k * k), 0.0);
+  std::vector<char> used(k, 0);
+  for (int j = 0; j < k; ++j) {
+    Vec q = products[j];
+    if (j > 0) check(MatMult(op(), basis(j), q), "MatMult");
+    PetscReal before = 0.0, after = 0.0;
+    check(VecNorm(q, NORM_2, &before), "VecNorm");
+    for (int pass = 0; pass < 2; ++pass)
+      for (int i = 0; i < j; ++i)
+        if (used[i]) {
+          PetscScalar d = 0.0;
+          check(VecDot(q, products[i], &d), "VecDot");
+          r[i * k + j] += d;
+          check(VecAXPY(q, -d, products[i]), "VecAXPY");
+        }
+    check(VecNorm(q, NORM_2, &after), "VecNorm");
+    if (after > 1e-10 * before) {
+      used[j] = 1;
+      r[j * k + j] = after;
+      check(VecScale(q, 1.0 / after), "VecScale");
+    }
+  }
+  // The least-residual combination, R c = Q^T b, taken where it leaves at most half the guess's
+  // residual: one that barely lowers it leaves the rest in the slow modes too (the FDA nozzle at
+  // Re 500 from its Stokes flow, CFL 50: the extrapolation leaves 0.21-0.40 of ||b||, the
+  // combination 0.13-0.24, and the solves took 11 % more iterations).
+  std::vector<PetscScalar> c(k, 0.0);
+  PetscScalar left = b_b;  // ||b - A x||^2 at the combination: ||b||^2 less b's part in Q's span
+  for (int i = 0; i < k; ++i)
+    if (used[i]) {
+      check(VecDot(rhs, products[i], &c[i]), "VecDot");
+      left -= c[i] * c[i];
+    }
+  if (!(left < 0.25 * guess_left)) return;  // the guess as it was (still in `solution`)
+  for (int i = k - 1; i >= 0; --i) {
+    if (!used[i]) continue;
+    for (int j = i + 1; j < k; ++j)
+      if (used[j]) c[i] -= r[i * k + j] * c[j];
+    c[i] /= r[i * k + i];
+  }
+  check(VecSet(solution, 0.0), "VecSet");
+  for (int j = 0; j < k; ++j)
+    if (used[j]) check(VecAXPY(solution, c[j], basis(j)), "VecAXPY");
+}
+
+void LinearSolver::Impl::keep_solution() {
+  if (keep_count <= 0) return;
+  Vec v = nullptr;
+  if (static_cast<int>(kept.size()) < keep_count) {
+    check(VecDuplicate(solution, &v), "VecDuplicate");
+  } else {
+    v = kept.back();
+    kept.pop_back();
+  }
+  check(VecCopy(solution, v), "VecCopy");
+  kept.insert(kept.begin(), v);
+}
+
+void LinearSolver::Impl::forget_solutions() {
+  for (Vec& v : kept) VecDestroy(&v);
+  for (Vec& v : products) VecDestroy(&v);
+  kept.clear();
+  products.clear();
+}
+
 double LinearSolver::relative_residual(const std::vector<double>& rhs, const std::vector<double>& x) {
   Impl& s = *impl_;
   s.load(rhs, x, "relative_residual");
@@ -588,6 +686,7 @@ SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::ve
     }
     check(KSPSetTolerances(s.ksp, rtol, abstol, dtol, max_it), "KSPSetTolerances");
   }
+  s.project_guess(rtol);
   set_reuse(s.ksp, reuse, s.solved);
   if (reuse)
     check(KSPSetTolerances(s.ksp, rtol, abstol, dtol, std::min<PetscInt>(max_it, 2 * reuse_limit)), "KSPSetTolerances");
@@ -603,6 +702,7 @@ SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::ve
     if (reason <= 0) {  // the old preconditioner no longer serves: start again with a new one
       check(KSPGetIterationNumber(s.ksp, &failed_iterations), "KSPGetIterationNumber");
       s.load(rhs, x, "solve_assembled");  // the initial guess again
+      s.project_guess(rtol);
       set_reuse(s.ksp, false, true);
       check(KSPSolve(s.ksp, s.rhs, s.solution), "KSPSolve");
       built = true;
@@ -610,6 +710,7 @@ SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::ve
   }
 
   s.copy_out(x);
+  s.keep_solution();
 
   SolveStats stats;
   PetscInt iterations = 0;
@@ -674,6 +775,14 @@ void LinearSolver::set_low_rank_coefficients(const std::vector<double>& coeffici
 }
 
 void LinearSolver::reuse_preconditioner(bool on) { impl_->reuse = on; }
+
+void LinearSolver::keep_solutions(int count) {
+  VM_CHECK(count >= 0, "keep_solutions: a count of solutions");
+  impl_->keep_count = count;
+  forget_solutions();
+}
+
+void LinearSolver::forget_solutions() { impl_->forget_solutions(); }
 
 void LinearSolver::set_residual_floor(double relative) { impl_->residual_floor = relative; }
 void LinearSolver::set_residual_check(bool on) { impl_->check_residual = on; }

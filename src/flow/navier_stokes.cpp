@@ -328,6 +328,7 @@ NavierStokes::NavierStokes(MeshPart part, const FlowCase& flow_case, const Repor
   s.u.assign(s.n(), Vec3::Zero());
   s.u_old = s.u;
   s.p.assign(s.n(), 0.0);
+  s.p_old = s.p;
   s.published = false;
 }
 
@@ -341,6 +342,8 @@ void NavierStokes::set_state(const std::vector<Vec3>& velocity, double time) {
     throw InputError(fmt::format("initial velocity: {} values for {} points", velocity.size(), s.total_points));
   for (int k = 0; k < s.n(); ++k) s.u[k] = velocity[s.mesh_point[k]];
   s.u_old = s.u;
+  s.p_old = s.p;
+  if (s.solver) s.solver->forget_solutions();
   s.published = false;
   s.t = time;
   s.step_count = 0;
@@ -427,6 +430,8 @@ void NavierStokes::restore(const FlowState& state) {
     s.u_old[k] = state.previous[entry[k]];
     s.p[k] = state.kinematic_pressure[entry[k]];
   }
+  s.p_old = s.p;  // (not saved: the next step's pressure guess is p^n, and no solutions are kept yet)
+  if (s.solver) s.solver->forget_solutions();
   s.t = state.time;
   s.step_count = state.steps;
   s.dt_next = state.time_step;

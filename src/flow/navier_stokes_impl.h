@@ -144,6 +144,7 @@ struct NavierStokes::Impl {
   int step_count = 0;
   double dt_next = 0.0, dt_last = 0.0;  // s: the next step's length and the last one's (0: fc.dt)
   std::vector<Vec3> u, u_old;  // u^n, u^{n-1}
+  std::vector<double> p_old;  // p^{n-1}: the next step's pressure extrapolated (its initial guess)
   std::vector<double> p;       // kinematic pressure p / rho
   std::vector<double> rhs, x, dirichlet;
   void make_solver();
@@ -218,7 +219,7 @@ struct NavierStokes::Impl {
   // converge and the system has at most NavierStokes::kDirectFallbackUnknowns unknowns, solve it
   // directly (MUMPS), said (steady solves).
   void solve_system(StepReport& report, const std::string& where, bool direct_fallback = false,
-                    const std::vector<Vec3>* guess = nullptr);
+                    const std::vector<Vec3>* guess = nullptr, const std::vector<double>* pressure_guess = nullptr);
   bool direct_now = false;  // a steady solve went to the direct solver: its next iterations too
   // The largest cell CFL number (a cell's mean velocity over its least height, 1 over its largest
   // barycentric gradient, times dt) over the processes: a pass over the cells of its own, before an

@@ -39,6 +39,8 @@ extern "C" __attribute__((visibility("default"))) const vesselmesh::flow::PetscC
       [](LinearSolver& solver, double factor) { solver.scale_tolerance(factor); },
       [](LinearSolver& solver, bool on) { solver.reuse_preconditioner(on); },
       [](LinearSolver& solver) { solver.rebuild_preconditioner(); },
+      [](LinearSolver& solver, int count) { solver.keep_solutions(count); },
+      [](LinearSolver& solver) { solver.forget_solutions(); },
       [](const LinearSolver& solver) { return solver.description(); },
       [](LinearSolver& solver, const std::vector<std::vector<double>>& columns) {
         solver.set_low_rank_columns(columns);

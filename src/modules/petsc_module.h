@@ -16,7 +16,7 @@ inline constexpr const char* kPetscModuleFile = "libvesselmesh-petsc.so";
 
 // The module's entry points: a LinearSolver made, used and destroyed inside the module; `layout`
 // first, as in modules/gmsh_module.h (raise it when this table or a type it passes changes).
-inline constexpr int kPetscCallsLayout = 15;
+inline constexpr int kPetscCallsLayout = 16;
 struct PetscCalls {
   int layout;
   int (*process_count)();
@@ -47,6 +47,8 @@ struct PetscCalls {
   void (*scale_tolerance)(LinearSolver& solver, double factor);
   void (*reuse_preconditioner)(LinearSolver& solver, bool on);
   void (*rebuild_preconditioner)(LinearSolver& solver);
+  void (*keep_solutions)(LinearSolver& solver, int count);
+  void (*forget_solutions)(LinearSolver& solver);
   std::string (*description)(const LinearSolver& solver);
   void (*set_low_rank_columns)(LinearSolver& solver, const std::vector<std::vector<double>>& columns);
   void (*set_low_rank_coefficients)(LinearSolver& solver, const std::vector<double>& coefficients);

@@ -85,6 +85,15 @@ TEST(FlowCase, PreconditionerReuseCanBeTurnedOff) {
   EXPECT_THROW(parse_case(text, "case.toml"), InputError);
 }
 
+TEST(FlowCase, KeptSolutions) {
+  EXPECT_EQ(parse_case(kContract, "case.toml").kept_solutions, 4);
+  std::string text = kContract;
+  text += "kept_solutions = 0\n";
+  EXPECT_EQ(parse_case(text, "case.toml").kept_solutions, 0);
+  text.replace(text.find("kept_solutions = 0"), 18, "kept_solutions = -1");
+  EXPECT_THROW(parse_case(text, "case.toml"), InputError);
+}
+
 TEST(FlowCase, CyclesTimesPeriodAndOtherUnits) {
   std::string text = kContract;
   text.replace(text.find("end = 1.0"), 9, "cycles = 3\nperiod = 0.8");
@@ -237,11 +246,45 @@ TEST(FlowCase, TagsMustMatchTheMesh) {
   }
 }
 
-TEST(Waveform, LinearBetweenSamplesAndPeriodic) {
+// Samples that close their period: the periodic cubic spline through them, its slope continuous
+// at every sample and round the period; a sinusoid from 20 samples within 1e-3 of its amplitude
+// (straight lines between them: 1.2 %).
+TEST(Waveform, ASplineThroughSamplesThatCloseThePeriod) {
   const Waveform w({0.0, 0.2, 1.0}, {1.0, 3.0, 1.0});
+  EXPECT_TRUE(w.smooth());
   EXPECT_DOUBLE_EQ(w.period(), 1.0);
+  for (double t : {0.0, 1.0, -1.0, 3.0}) EXPECT_NEAR(w(t), 1.0, 1e-12) << t;
+  for (double t : {0.2, 1.2, -0.8}) EXPECT_NEAR(w(t), 3.0, 1e-12) << t;
+  EXPECT_NEAR(w(0.1), w(1.1), 1e-12);
+  EXPECT_NEAR(w(0.6), w(-0.4), 1e-12);
+  EXPECT_GT(std::abs(w(0.05) - 1.5), 0.01);  // a curve, not the line (1.5 there)
+  const double e = 1e-6;
+  for (double t : {0.0, 0.2, 1.0}) {
+    const double left = (w(t) - w(t - e)) / e, right = (w(t + e) - w(t)) / e;
+    EXPECT_NEAR(left, right, 1e-4 * (1.0 + std::abs(left))) << "slope at t = " << t;
+  }
+  std::vector<double> t, q;
+  for (int k = 0; k <= 20; ++k) {
+    t.push_back(0.8 * k / 20.0);
+    q.push_back(2.0 + std::sin(2.0 * M_PI * k / 20.0));
+  }
+  q.back() = q.front();
+  const Waveform sine(t, q);
+  double worst = 0.0;
+  for (int k = 0; k < 1000; ++k) {
+    const double s = 0.8 * (k + 0.5) / 1000.0;
+    worst = std::max(worst, std::abs(sine(s) - (2.0 + std::sin(2.0 * M_PI * s / 0.8))));
+  }
+  EXPECT_LT(worst, 1e-3);
+}
+
+// Samples whose last value is not their first: straight lines between them, as the period's end
+// jumps anyway.
+TEST(Waveform, LinesBetweenSamplesThatDoNotCloseThePeriod) {
+  const Waveform w({0.0, 0.2, 1.0}, {1.0, 3.0, 2.0});
+  EXPECT_FALSE(w.smooth());
   EXPECT_DOUBLE_EQ(w(0.1), 2.0);
-  EXPECT_DOUBLE_EQ(w(0.6), 2.0);
+  EXPECT_DOUBLE_EQ(w(0.6), 2.5);
   EXPECT_DOUBLE_EQ(w(1.1), 2.0);
   EXPECT_DOUBLE_EQ(w(-0.9), 2.0);
   EXPECT_DOUBLE_EQ(w(3.2), 3.0);
@@ -254,8 +297,9 @@ TEST(FlowCase, ScaleMultipliesTheFlowOfAVelocityBoundary) {
   std::string wall = kContract;
   wall.replace(wall.find("type = \"wall\""), 13, "type = \"wall\"\nscale = 2.0");
   EXPECT_THROW(parse_case(wall, "/c/case.toml"), InputError);
-  const Waveform w = Waveform({0.0, 0.2, 1.0}, {1.0, 3.0, 1.0}).scaled(-2.0);
-  EXPECT_DOUBLE_EQ(w(0.1), -4.0);
+  const Waveform given({0.0, 0.2, 1.0}, {1.0, 3.0, 1.0}), w = given.scaled(-2.0);
+  EXPECT_DOUBLE_EQ(w(0.1), -2.0 * given(0.1));
+  EXPECT_DOUBLE_EQ(w(0.2), -6.0);
   EXPECT_DOUBLE_EQ(w.period(), 1.0);
 }
 
