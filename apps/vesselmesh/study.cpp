@@ -18,9 +18,10 @@ Command add_study_command(CLI::App& parent) {
       "whose finest level is the reference (by default the envelope series: each level finer than every compared mesh "
       "at every point, by 1.1 x factor^(k-1); [reference] kind = \"uniform\" for the seed's uniform meshes), their "
       "boundary-layer volume meshes, the flow case on each, and WSS on the rings, at the points and over the whole wall "
-      "against the reference, with the reference's own uncertainty (grid convergence, half the time step). Writes DIR/report.md and DIR/report.html (Table 1, WSS along "
-      "the rings, relative differences, pictures of the meshes and of WSS, timings, options), DIR/figures/ (SVG and "
-      "PNG), DIR/study.json. Steps already made with the same inputs are reused: run it again to resume");
+      "against the reference, with the reference's own uncertainty (grid convergence, half the time step). Writes "
+      "DIR/report.md and DIR/report.html (Table 1, WSS along the rings, relative differences, pictures of the meshes "
+      "and of WSS, timings, options), DIR/figures/ (SVG and PNG), DIR/study.json. Steps already made with the same "
+      "inputs are reused: run it again to resume");
   struct Options {
     std::string study_file, output;
     int ranks = 0;

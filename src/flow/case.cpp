@@ -274,7 +274,8 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
 
   const io::TomlView solver = root["solver"];
   if (solver && !solver.is_table()) r.fail("solver", "expected a table [solver]");
-  if (solver) r.known_keys(*solver.as_table(), "solver", {"petsc_options", "reuse_preconditioner", "kept_solutions", "threads"});
+  if (solver)
+    r.known_keys(*solver.as_table(), "solver", {"petsc_options", "reuse_preconditioner", "kept_solutions", "threads"});
   c.petsc_options = r.text(solver["petsc_options"], "solver.petsc_options", "");
   c.reuse_preconditioner = r.flag(solver["reuse_preconditioner"], "solver.reuse_preconditioner", true);
   c.kept_solutions = r.integer(solver["kept_solutions"], "solver.kept_solutions", c.kept_solutions, 0);

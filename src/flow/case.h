@@ -113,7 +113,7 @@ struct FlowCase {
   std::vector<BoundaryCondition> boundaries;
   std::string petsc_options;
   bool reuse_preconditioner = true;  // [solver]: time steps keep the preconditioner while it serves
-  int kept_solutions = 4;  // [solver]: time steps start from the best combination of the last N (LinearSolver::keep_solutions)
+  int kept_solutions = 4;  // [solver]: time steps start from the last N solutions' best (LinearSolver::keep_solutions)
   int threads = 0;  // [solver]: the assembly's threads a process; 0: the cores on one process, 1 under MPI
   std::string wss_method = "quadratic";  // post::parse_wss_method
   int checkpoint_every = 10;             // [output]: steps (default save_every); 0: at the end, on a signal

@@ -105,6 +105,7 @@ struct LinearSolver::Impl {
   // the initial guess's projection on them (their products with A, the caller's guess).
   int keep_count = 0;
   std::vector<Vec> kept, products;
+  Vec projected = nullptr;  // the last solve's start where project_guess made it (one of `products`), else null
   void project_guess(double rtol);  // the loaded initial guess replaced by its least-residual combination
   void keep_solution();
   void forget_solutions();
@@ -565,6 +566,7 @@ PetscReal LinearSolver::Impl::residual_norm() const {
 }
 
 void LinearSolver::Impl::project_guess(double rtol) {
+  projected = nullptr;
   if (kept.empty()) return;
   const int k = 1 + static_cast<int>(kept.size());
   while (static_cast<int>(products.size()) < k + 1) {
@@ -632,6 +634,8 @@ void LinearSolver::Impl::project_guess(double rtol) {
   check(VecSet(solution, 0.0), "VecSet");
   for (int j = 0; j < k; ++j)
     if (used[j]) check(VecAXPY(solution, c[j], basis(j)), "VecAXPY");
+  check(VecCopy(solution, guess), "VecCopy");  // kept for a solve made again (solve_assembled)
+  projected = guess;
 }
 
 void LinearSolver::Impl::keep_solution() {
@@ -652,6 +656,7 @@ void LinearSolver::Impl::forget_solutions() {
   for (Vec& v : products) VecDestroy(&v);
   kept.clear();
   products.clear();
+  projected = nullptr;
 }
 
 double LinearSolver::relative_residual(const std::vector<double>& rhs, const std::vector<double>& x) {
@@ -701,8 +706,8 @@ SolveStats LinearSolver::solve_assembled(const std::vector<double>& rhs, std::ve
     check(KSPSetTolerances(s.ksp, rtol, abstol, dtol, max_it), "KSPSetTolerances");
     if (reason <= 0) {  // the old preconditioner no longer serves: start again with a new one
       check(KSPGetIterationNumber(s.ksp, &failed_iterations), "KSPGetIterationNumber");
-      s.load(rhs, x, "solve_assembled");  // the initial guess again
-      s.project_guess(rtol);
+      s.load(rhs, x, "solve_assembled");  // the initial guess again (as projected: the same start)
+      if (s.projected) check(VecCopy(s.projected, s.solution), "VecCopy");
       set_reuse(s.ksp, false, true);
       check(KSPSolve(s.ksp, s.rhs, s.solution), "KSPSolve");
       built = true;
