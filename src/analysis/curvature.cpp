@@ -15,6 +15,7 @@ namespace vesselmesh::analysis {
 namespace {
 
 constexpr int kGrain = 4096;
+constexpr double kLeastFitShape = 4e-4;  // see face_record
 
 // What the vertex pass needs of a triangle, kept small (float) so the pass streams little
 // memory: its fitted tensor II = (e f; f g) in its frame (tu, n x tu), its unit normal n and
@@ -51,7 +52,11 @@ FaceRecord face_record(const TriMesh& mesh, const std::vector<Vec3>& normals, in
     r0 += du * u, r1 += du * v + dv * u, r2 += dv * v;
   }
   const double trace = su + sv, minor = su * sv - suv * suv, det = trace * minor;
-  if (!(det > 1e-12 * trace * trace * trace)) return out;
+  // A needle or a flat triangle (smallest angle under about 2 degrees: minor / trace^2 is 0.25 for
+  // an equilateral triangle, 4e-4 at 2 degrees) measures the normals' change across itself over
+  // a distance near zero: its fit is noise (a plane cut's needles at an open end gave |k| = 2600
+  // on a pipe of radius 2, and the curvature size field its smallest size there). Left out.
+  if (!(det > 1e-12 * trace * trace * trace) || !(minor > kLeastFitShape * trace * trace)) return out;
   const double inv_det = 1.0 / det;
   const double e = ((trace * sv - suv * suv) * r0 - suv * sv * r1 + suv * suv * r2) * inv_det;
   const double g = (suv * suv * r0 - suv * su * r1 + (trace * su - suv * suv) * r2) * inv_det;

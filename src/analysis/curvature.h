@@ -18,8 +18,10 @@
 // Units: 1 / (the mesh's length unit). k1 <= k2 always; (dir1, dir2, normal) is a
 // right-handed orthonormal frame.
 //
-// Open ends: boundary points use the triangles they have. Points without a non-degenerate
-// triangle get zero curvature, a zero normal and arbitrary directions (never NaN).
+// Open ends: boundary points use the triangles they have. Needles and flat triangles (smallest
+// angle under about 2 degrees, as a plane cut leaves at an open end) are left out of the average:
+// their fit is noise. Points without another triangle get zero curvature, and points without a
+// non-degenerate triangle a zero normal and arbitrary directions too (never NaN).
 // Linear time; threaded with TBB; the result does not depend on the thread count.
 #pragma once
 

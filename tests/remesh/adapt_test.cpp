@@ -452,6 +452,113 @@ TEST(Remesh, CappedAndNeedleSegmentationsMeetTheCountAndTheAngles) {
   expect_four_kinds_meet_the_targets(needles, 20000.0, "needles");
 }
 
+// Issue 51: a bifurcation with a thin daughter (radius 0.36 mm beside 2.3 and 2.0), where the
+// distance bound, not the field, sizes the mesh.
+synth::BifurcationOptions thin_branch() {
+  return {.radius = 2.3, .daughter_radius = {2.0, 0.36}, .parent_length = 10.0, .daughter_length = 12.0,
+          .blend = 0.3, .resolution = 0.12};
+}
+
+// The triangles whose centroids lie on the thin daughter (within twice its radius of its axis),
+// from `from` to `to` along it (mm from the junction).
+int thin_daughter_triangles(const TriMesh& mesh, double from, double to) {
+  const synth::BifurcationOptions o = thin_branch();
+  const double a = o.angle_deg[1] * std::numbers::pi / 180.0;
+  const Vec3 axis(-std::sin(a), 0.0, std::cos(a));
+  int count = 0;
+  for (const Triangle& f : mesh.triangles) {
+    const Vec3 c = (mesh.points[f[0]] + mesh.points[f[1]] + mesh.points[f[2]]) / 3.0;
+    const double t = c.dot(axis);
+    count += t > from && t < to && (c - t * axis).norm() < 2.0 * o.daughter_radius[1];
+  }
+  return count;
+}
+
+// What the bound needs on that stretch: a polygon of n sides within 2 % of the radius of the circle
+// (r (1 - cos(pi / n)) <= 0.02 r: n = 16), its side the edge of equilateral triangles over the tube.
+double thin_daughter_need(double from, double to) {
+  const double r = thin_branch().daughter_radius[1];
+  const double sides = std::ceil(std::numbers::pi / std::acos(1.0 - 0.02));
+  const double h = 2.0 * std::numbers::pi * r / sides;
+  return 2.0 * std::numbers::pi * r * (to - from) / (std::sqrt(3.0) / 4.0 * h * h);
+}
+
+// The isotropic kinds asked far fewer triangles than the thin daughter needs: the bound held there
+// (at least 0.8 times the triangles it needs, at most twice: 1.5 to 1.9 times now, where issue 51
+// asks 1.25), angles >= 20 degrees (the curvature kind's were 17 at the open ends' rims, where a plane
+// cut's needles made the curvature 2600 / mm); the least count reported, and every kind within 3 %
+// of a count above it.
+TEST(Remesh, AThinBranchHoldsTheBoundAndTheAnglesAndCountsAboveItsLeast) {
+  const TriMesh input = synth::bifurcation(thin_branch());
+  const analysis::CurvatureField curvature = analysis::curvature(input);
+  const auto [distance, radius] = local_radius(input);
+  ASSERT_TRUE(distance);
+  const double from = 3.0, to = 10.0, need = thin_daughter_need(from, to);
+  for (sizing::SizeKind kind : {sizing::SizeKind::uniform, sizing::SizeKind::distance, sizing::SizeKind::curvature,
+                                sizing::SizeKind::anisotropic}) {
+    const std::string name = sizing::size_kind_name(kind);
+    RemeshOptions options;
+    options.input_radius = &radius;
+    const auto run = [&](double target) {
+      const sizing::SizeField field = sizing::make_size_field(input, {.kind = kind, .target_triangles = target},
+                                                              {.curvature = &curvature, .distance = &*distance});
+      return adapt_to_count(input, field.metric, target, options);
+    };
+    double above = 8000.0;
+    if (kind != sizing::SizeKind::anisotropic) {
+      const RemeshResult few = run(2000.0);
+      const int on_thin = thin_daughter_triangles(few.mesh, from, to);
+      EXPECT_LE(on_thin, 2.0 * need) << name;
+      EXPECT_GE(on_thin, 0.8 * need) << name;
+      EXPECT_LE(few.stats.hausdorff_relative, 0.02 + 1e-9) << name;
+      EXPECT_GE(few.stats.min_angle_deg, 20.0) << name;
+      ASSERT_GT(few.least_count, 2000) << name << ": " << few.count_note;
+      above = std::max(above, 1.05 * few.least_count);
+    }
+    const RemeshResult r = run(above);
+    EXPECT_NEAR(r.stats.triangles, above, 0.03 * above) << name << ": " << r.count_note;
+    if (kind != sizing::SizeKind::anisotropic) {
+      EXPECT_GE(r.stats.min_angle_deg, 20.0) << name;
+    }
+    EXPECT_LE(r.stats.hausdorff_relative, 0.02 + 1e-9) << name;
+  }
+}
+
+// The same closed by flat caps, from a faceted segmentation of it (about 7 edges round the thin
+// daughter, as a segmentation of a thin coronary branch has): the isotropic kinds keep their
+// angles at 20000 triangles and at the least count (a real capped coronary tree gave 12 degrees).
+TEST(Remesh, ACappedFacetedThinBranchKeepsItsAngles) {
+  const TriMesh fine = synth::bifurcation(thin_branch());
+  RemeshOptions coarse;
+  coarse.hausdorff_relative = 0.0;
+  coarse.reconstruction = Reconstruction::facets;
+  const TriMesh open =
+      adapt(fine, metric_of(fine, [](const Vec3&) { return sizing::isotropic_metric(0.3); }), coarse).mesh;
+  TriMesh capped = analysis::fan_capped(open, analysis::open_ends(open));
+  mesh::clean(capped, {.find_self_intersections = false});
+  ASSERT_TRUE(mesh::statistics(capped).closed);
+  const analysis::CurvatureField curvature = analysis::curvature(capped);
+  const std::vector<double> radius = local_radius(capped).radius;
+  for (sizing::SizeKind kind : {sizing::SizeKind::uniform, sizing::SizeKind::curvature}) {
+    RemeshOptions options;
+    options.input_radius = &radius;
+    const auto run = [&](double target) {
+      const sizing::SizeField field =
+          sizing::make_size_field(capped, {.kind = kind, .target_triangles = target}, {.curvature = &curvature});
+      return adapt_to_count(capped, field.metric, target, options);
+    };
+    for (double target : {20000.0, 2000.0}) {
+      const RemeshResult r = run(target);
+      const std::string name = fmt::format("{} at {}", sizing::size_kind_name(kind), target);
+      EXPECT_GE(r.stats.min_angle_deg, 20.0) << name;
+      EXPECT_LE(r.stats.hausdorff_relative, 0.02 + 1e-9) << name;
+      if (target < 20000.0) {
+        EXPECT_GT(r.least_count, 0) << name << ": " << r.count_note;
+      }
+    }
+  }
+}
+
 // The quality targets on the real vessels, for the four size kinds at a common triangle count.
 struct Vessel {
   std::string file, units;
