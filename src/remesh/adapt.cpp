@@ -21,6 +21,7 @@ namespace {
 
 const double kLong = std::sqrt(2.0);
 const double kShort = 1.0 / std::sqrt(2.0);
+constexpr double kSliver = 0.1;  // an edge this short in the metric after the final refinement
 constexpr double kMinNormalCos = 0.5;  // 60 degrees from the input's normal
 // A move is kept when it raises the worst quality of its ball by this much. Smaller gains are
 // the passes' long tail: on the aortic arch's anisotropic field a floor of 1e-6 kept 83k moves
@@ -72,7 +73,7 @@ class Remesher {
 
   std::vector<std::array<int, 2>> edges() const;
   int split_pass();
-  int collapse_pass();
+  int collapse_pass(double shorter_than = kShort);
   int flip_pass();
   int move_pass();
   bool too_far(const Triangle& f) const {
@@ -382,17 +383,18 @@ int Remesher::split_pass() {
   return done;
 }
 
-int Remesher::collapse_pass() {
+int Remesher::collapse_pass(double shorter_than) {
   std::vector<std::pair<double, std::array<int, 2>>> todo;
   for (const auto& e : edges()) {
     const double l = m_.edge_length(e[0], e[1]);
-    if (l < kShort) todo.push_back({l, e});
+    if (l < shorter_than) todo.push_back({l, e});
   }
   std::sort(todo.begin(), todo.end());
   int done = 0;
   for (const auto& [length, e] : todo) {
     const auto [a, b] = e;
-    if (!m_.point_alive[a] || !m_.point_alive[b] || m_.edge_length(a, b) >= kShort) continue;  // collapse() checks the edge
+    // (collapse() checks the edge)
+    if (!m_.point_alive[a] || !m_.point_alive[b] || m_.edge_length(a, b) >= shorter_than) continue;
     // Remove the freer point first: a curve point stays rather than a free one moving onto it.
     const bool a_first = static_cast<int>(m_.kind[a]) <= static_cast<int>(m_.kind[b]);
     done += a_first ? (collapse(a, b) || collapse(b, a)) : (collapse(b, a) || collapse(a, b));
@@ -547,6 +549,12 @@ void Remesher::run(const Reporter& reporter) {
     keep_bound_ = true;
     for (int it = 0; refined > 0 && it < 8; ++it)  // mend the shapes the refinement made, within the bound
       if (flip_pass() + move_pass() == 0) break;
+    // A split point projected next to another leaves a sliver no flip or move mends (an edge of
+    // 0.005 mm among 0.4 mm ones, quality 0.03, on the capped SimVascular aorta): collapsed where
+    // the bound and the shapes allow.
+    if (refined > 0 && collapse_pass(kSliver) > 0)
+      for (int it = 0; it < 8; ++it)
+        if (flip_pass() + move_pass() == 0) break;
   }
   reporter.progress("remeshing", 1.0);
 }
