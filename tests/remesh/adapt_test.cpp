@@ -335,16 +335,21 @@ LocalRadius local_radius(const TriMesh& input) {
   return r;
 }
 
-// Issue 31's class of inputs: a coarse, faceted segmentation of a bifurcation whose daughters'
-// radii (0.8, 0.6 mm) are about its edges (0.55 mm): made by remeshing a fine one onto its own
-// facets with no distance bound.
-TriMesh coarse_faceted_bifurcation() {
-  const TriMesh fine = synth::bifurcation({.radius = 2.3, .daughter_radius = {0.8, 0.6}, .parent_length = 10.0,
-                                           .daughter_length = 8.0, .blend = 0.6, .resolution = 0.3});
+// A faceted segmentation of `fine`, as a coarse image gives: remeshed onto its own facets to edges of
+// `size`, with no distance bound.
+TriMesh faceted(const TriMesh& fine, double size) {
   RemeshOptions coarse;
   coarse.hausdorff_relative = 0.0;
   coarse.reconstruction = Reconstruction::facets;
-  return adapt(fine, metric_of(fine, [](const Vec3&) { return sizing::isotropic_metric(0.55); }), coarse).mesh;
+  return adapt(fine, metric_of(fine, [size](const Vec3&) { return sizing::isotropic_metric(size); }), coarse).mesh;
+}
+
+// Issue 31's class of inputs: a coarse, faceted segmentation of a bifurcation whose daughters'
+// radii (0.8, 0.6 mm) are about its edges (0.55 mm).
+TriMesh coarse_faceted_bifurcation() {
+  return faceted(synth::bifurcation({.radius = 2.3, .daughter_radius = {0.8, 0.6}, .parent_length = 10.0,
+                                     .daughter_length = 8.0, .blend = 0.6, .resolution = 0.3}),
+                 0.55);
 }
 
 // Needles and near-duplicate points, as an edited segmentation has them: every so many edges
@@ -528,12 +533,7 @@ TEST(Remesh, AThinBranchHoldsTheBoundAndTheAnglesAndCountsAboveItsLeast) {
 // daughter, as a segmentation of a thin coronary branch has): the isotropic kinds keep their
 // angles at 20000 triangles and at the least count (a real capped coronary tree gave 12 degrees).
 TEST(Remesh, ACappedFacetedThinBranchKeepsItsAngles) {
-  const TriMesh fine = synth::bifurcation(thin_branch());
-  RemeshOptions coarse;
-  coarse.hausdorff_relative = 0.0;
-  coarse.reconstruction = Reconstruction::facets;
-  const TriMesh open =
-      adapt(fine, metric_of(fine, [](const Vec3&) { return sizing::isotropic_metric(0.3); }), coarse).mesh;
+  const TriMesh open = faceted(synth::bifurcation(thin_branch()), 0.3);
   TriMesh capped = analysis::fan_capped(open, analysis::open_ends(open));
   mesh::clean(capped, {.find_self_intersections = false});
   ASSERT_TRUE(mesh::statistics(capped).closed);
