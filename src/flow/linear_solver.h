@@ -102,6 +102,18 @@ inline std::string saddle_point_options() {
 // points; issue 48): at 1e-5 the WSS moved by 7.6e-4 of its mean in RMS (5.6e-3 at the most, OSI by up
 // to 0.057) for 17 iterations a step against 24, at 1e-4 by 4.0e-3 (1.7e-2) for 10.5, where 1 and 2
 // processes at 1e-6 differ by 4.4e-5 (4.3e-4): the differences the study reports are a few percent.
+// What bounds the iterations as the CFL number grows (issue 48; one process, 55 settled steps of
+// the anastomosis study's curvature mesh, 126k unknowns, CFL 44, 17.2 a step; 15 of a coarse FDA
+// nozzle at Re 500, 296k, CFL 52, 41.3): the velocity block solved to 1e-5 by GMRES still takes
+// 10.7 and 27.7, so on the nozzle the Schur complement's approximation does; scaling its
+// convective weight (the tau_M (u.grad N)^2 in the momentum diagonal D) by 0.3 or 3, or adding the
+// Galerkin convection's |u.grad N| to D, moves neither by more than 1.3; two AMG cycles on S_p
+// neither; PETSc's LSC, which ignores the stabilization's pressure block, does not converge; a
+// pressure convection-diffusion product S_p^-1 F_p D_p^-1 (F_p the velocity block's trace / 3 on
+// the pressure's points, natural boundaries) took 48.4 on the anastomosis and failed on the
+// nozzle's Stokes start. The velocity block matters where the Schur side does not: SOR sweeps
+// instead of point-block Jacobi take 9.5 and 24.6, but their sweeps cost more (0.38 s a step
+// against 0.27 on the anastomosis); ILU with the factorization's upper part: README's figures.
 inline std::string time_step_options() {
   return "-ksp_type fgmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 10 "
          "-pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full "

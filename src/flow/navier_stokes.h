@@ -83,6 +83,7 @@ struct StepReport {
   double time_step = 0.0;  // s, the step's length (time steps)
   int linear_iterations = 0;  // all solves of the step
   int solves = 0;
+  int preconditioners_built = 0;  // the step's solves that built their preconditioner (the others reused one)
   double max_cfl = 0.0;  // max |u| dt / h over the elements (h: the element's least height)
   double change = 0.0;   // relative velocity change of the last (Picard) iteration
   // Steady solves: the steady equations' relative residual at the answer, ||R(u)|| / ||b|| (the

@@ -70,6 +70,7 @@ void NavierStokes::Impl::solve_system(StepReport& report, const std::string& whe
   report.solve_seconds += seconds_since(start);
   report.linear_iterations += stats.iterations;
   report.solves += 1;
+  report.preconditioners_built += stats.preconditioner_built ? 1 : 0;
   report.solver_reason = stats.reason;
   if (!stats.converged)
     throw ComputationError(fmt::format("{}: the linear solver did not converge ({} after {} iterations); the mesh "

@@ -479,7 +479,7 @@ void Run::open_logs() {
     log_ += fmt::format(",{0}_flux_m3_s,{0}_mean_pressure_Pa", b.tag);
     if (b.type == BoundaryType::rcr) log_ += fmt::format(",{}_capacitor_pressure_Pa", b.tag);
   }
-  log_ += ",linear_iterations,max_cfl,assembly_seconds,solve_seconds,seconds\n";
+  log_ += ",preconditioners_built,linear_iterations,max_cfl,assembly_seconds,solve_seconds,seconds\n";
   log_header_ = log_;
   for (const BoundaryCondition& b : fc_.boundaries)
     if (b.type != BoundaryType::wall) end_tags_.push_back(b.tag);
@@ -685,7 +685,7 @@ void Run::log_step(const StepReport& r) {
     if (fc_.boundaries[k].type == BoundaryType::rcr)
       line += fmt::format(",{:.9g}", flows[k].capacitor_pressure);
   }
-  line += fmt::format(",{},{:.4g},{:.4g},{:.4g},{:.4g}\n", r.linear_iterations, r.max_cfl,
+  line += fmt::format(",{},{},{:.4g},{:.4g},{:.4g},{:.4g}\n", r.preconditioners_built, r.linear_iterations, r.max_cfl,
                       r.assembly_seconds, r.solve_seconds, r.seconds);
   log_line(line);
 }
