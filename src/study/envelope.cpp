@@ -3,8 +3,11 @@
 #include "mesh/error.h"
 #include "mesh/locator.h"
 #include "sizing/gradation.h"
+#include "sizing/metric.h"
+#include "sizing/size_field.h"
 #include "study/wall_difference.h"
 
+#include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -103,6 +106,28 @@ std::vector<double> calibrated_sizes(const TriMesh& input, const std::vector<dou
     next[v] = achieved[v] > 0.0 ? asked[v] * std::clamp(target[v] / achieved[v], 2.0 / 3.0, 1.5) : asked[v];
   sizing::grade_sizes(input, next, gradation);
   return next;
+}
+
+remesh::RemeshResult remesh_level(const TriMesh& input, const std::vector<double>& target,
+                                  const remesh::RemeshOptions& options, double& predicted, const Reporter& reporter) {
+  const auto metric_of = [](const std::vector<double>& sizes) {
+    std::vector<Sym3> metric(sizes.size());
+    for (size_t v = 0; v < metric.size(); ++v) metric[v] = sizing::isotropic_metric(sizes[v]);
+    return metric;
+  };
+  predicted = sizing::predicted_triangles(input, metric_of(target));
+  reporter.info(fmt::format("study: the level's sizes predict about {:.0f} triangles", predicted));
+  const remesh::RemeshResult first = remesh::adapt(input, metric_of(target), options, reporter);
+  std::vector<double> sizes = calibrated_sizes(input, target, target, first.mesh);
+  remesh::RemeshResult made = remesh::adapt(input, metric_of(sizes), options, reporter);
+  const double count = static_cast<double>(made.mesh.num_triangles());
+  if (count < (1.0 - kLevelCountShortfall) * predicted) {
+    reporter.info(fmt::format("study: the level made {:.0f} triangles, {:.1f} % short: its sizes times {:.3f}", count,
+                              100.0 * (1.0 - count / predicted), std::sqrt(count / predicted)));
+    for (double& s : sizes) s *= std::sqrt(count / predicted);
+    made = remesh::adapt(input, metric_of(sizes), options, reporter);
+  }
+  return made;
 }
 
 double envelope_level_scale(double factor, int level, int levels) {

@@ -200,25 +200,6 @@ void measure_whole_wall(StudyResult& result, const post::WallSeries& reference_s
   }
 }
 
-// An envelope level's surface: the input remeshed to the envelope's sizes / scale, then once more
-// to sizes calibrated by what that first pass achieved (study/envelope.h); `predicted` the count the
-// sizes predict.
-remesh::RemeshResult remesh_envelope_level(const TriMesh& surface, const std::vector<double>& envelope, double scale,
-                                           const remesh::RemeshOptions& options, double& predicted,
-                                           const Reporter& reporter) {
-  std::vector<double> target(surface.points.size());
-  for (size_t v = 0; v < target.size(); ++v) target[v] = envelope[v] / scale;
-  const auto metric_of = [&](const std::vector<double>& sizes) {
-    std::vector<Sym3> metric(sizes.size());
-    for (size_t v = 0; v < metric.size(); ++v) metric[v] = sizing::isotropic_metric(sizes[v]);
-    return metric;
-  };
-  predicted = sizing::predicted_triangles(surface, metric_of(target));
-  reporter.info(fmt::format("study: the level's sizes predict about {:.0f} triangles", predicted));
-  const remesh::RemeshResult first = remesh::adapt(surface, metric_of(target), options, reporter);
-  return remesh::adapt(surface, metric_of(calibrated_sizes(surface, target, target, first.mesh)), options, reporter);
-}
-
 // The series' first level's flow again at half the time step, saving at the same times (its stamp
 // the level's with "time step / 2": reused when it matches).
 MeshRun run_half_step(const StudyConfig& config, const flow::FlowCase& base_case, const MeshRun& level,
@@ -724,7 +705,9 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       if (envelope_level) {
         reporter.info(fmt::format("study: {} ({} of {}): surface mesh {:.3g} times finer than every compared mesh",
                                   name, m + 1, plan.size(), scale));
-        remeshed = remesh_envelope_level(surface, envelope.sizes, scale, options, run.target_triangles, reporter);
+        std::vector<double> target(surface.points.size());
+        for (size_t v = 0; v < target.size(); ++v) target[v] = envelope.sizes[v] / scale;
+        remeshed = remesh_level(surface, target, options, run.target_triangles, reporter);
       } else {
         reporter.info(fmt::format("study: {} ({} of {}): surface mesh of about {:.0f} triangles", name, m + 1,
                                   plan.size(), run.target_triangles));

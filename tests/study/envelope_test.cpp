@@ -19,6 +19,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace vesselmesh::study {
 namespace {
@@ -104,10 +107,10 @@ TEST(Envelope, LevelInteriorIsTheFinestComparedFieldOverTheScale) {
 
 // On the bundled bifurcation: the envelope of a uniform and a curvature mesh of 4000 triangles is no
 // larger than either mesh's achieved size at any input point, and the level remeshed to it over
-// 1.33 (and again to the calibrated sizes, as the study does) is, where sampled, no coarser than
-// every compared mesh's size over 1.33 (within the remesher's band: its edges within [1/sqrt 2,
-// sqrt 2] of the metric, means within 20 %), and not much finer either (the calibration: 0.8 of
-// the asked without it).
+// 1.33 (remesh_level, as the study does: again to the calibrated sizes, and to the count) is, where
+// sampled, no coarser than every compared mesh's size over 1.33 (within the remesher's band: its
+// edges within [1/sqrt 2, sqrt 2] of the metric, means within 20 %), its count what its sizes
+// predict, and not much finer either.
 TEST(Envelope, LevelIsFinerThanEveryComparedMeshOnABifurcation) {
   TriMesh input = io::read_surface(std::string(VESSELMESH_DATA_DIR) + "/y_bifurcation.stl").mesh;
   mesh::clean(input);
@@ -160,13 +163,21 @@ TEST(Envelope, LevelIsFinerThanEveryComparedMeshOnABifurcation) {
   const double scale = 1.33;
   std::vector<double> target(input.points.size());
   for (size_t v = 0; v < target.size(); ++v) target[v] = envelope[v] / scale;
-  const auto metric_of = [](const std::vector<double>& sizes) {
-    std::vector<Sym3> metric(sizes.size());
-    for (size_t v = 0; v < metric.size(); ++v) metric[v] = sizing::isotropic_metric(sizes[v]);
-    return metric;
+  struct Said : Reporter {
+    mutable std::vector<std::string> lines;
+    void info(std::string_view message) const override { lines.emplace_back(message); }
+  } said;
+  double predicted = 0.0;
+  const TriMesh level = remesh_level(input, target, options, predicted, said).mesh;
+  // Its count meets what its sizes predict, within the shortfall allowed and not much above it.
+  EXPECT_GE(level.triangles.size(), (1.0 - kLevelCountShortfall) * predicted);
+  EXPECT_LE(level.triangles.size(), 1.1 * predicted);
+  // Here the calibrated surface alone fell short (the third pass refined it): else this test does
+  // not see the pass.
+  const auto third_pass = [](const std::string& line) {
+    return line.find("short: its sizes times") != std::string::npos;
   };
-  const TriMesh first = remesh::adapt(input, metric_of(target), options).mesh;
-  const TriMesh level = remesh::adapt(input, metric_of(calibrated_sizes(input, target, target, first)), options).mesh;
+  EXPECT_TRUE(std::any_of(said.lines.begin(), said.lines.end(), third_pass)) << said.lines.size() << " lines said";
   const std::vector<double> level_sizes = achieved_sizes(level);
   const mesh::SurfaceLocator on_level(level);
   int sampled = 0, coarser = 0;
@@ -179,9 +190,12 @@ TEST(Envelope, LevelIsFinerThanEveryComparedMeshOnABifurcation) {
     if (ratio > 1.2) ++coarser;
     ratios += std::log(ratio);
   }
-  // On average the level meets its sizes: the mean ratio within 10 % of 1 (the first surface alone
-  // stays finer than asked).
-  EXPECT_NEAR(std::exp(ratios / sampled), 1.0, 0.1);
+  // On average the level meets its sizes or is finer, as its count asks: the mean ratio of its
+  // achieved sizes (least altitudes) to the asked between 0.8 and 1.05 (0.86 measured: the count
+  // pass's; the local calibration alone met them within 10 % and fell short of the count).
+  const double mean_ratio = std::exp(ratios / sampled);
+  EXPECT_GT(mean_ratio, 0.8);
+  EXPECT_LT(mean_ratio, 1.05);
   EXPECT_GT(sampled, 100);
   // Pointwise sizes scatter with the triangles' shapes: at most 2 % of the samples over the band.
   EXPECT_LE(coarser, sampled / 50) << "worst ratio " << worst;
