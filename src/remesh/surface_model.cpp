@@ -95,6 +95,16 @@ SurfaceModel::SurfaceModel(const TriMesh& input, const std::vector<Sym3>& metric
     for (int e = 0; e < edges.num_edges(); ++e)
       if (features_.curve_of_edge[e] >= 0 && !edges.is_boundary(e)) rigid_[edges.edges[e][0]] = rigid_[edges.edges[e][1]] = 1;
     in_rim_planes(edges);
+    // How far each patch strays from its facet at most: |S - q| <= 1/2 max_i |n_i . (v_i - q)|,
+    // and q is a mean of the corners.
+    bulge_.assign(input.triangles.size(), 0.0);
+    for (int t = 0; t < input.num_triangles(); ++t) {
+      const Triangle& g = input.triangles[t];
+      const std::array<Vec3, 3> n = corner_normals(t);
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          bulge_[t] = std::max(bulge_[t], 0.5 * std::abs(n[i].dot(input.points[g[i]] - input.points[g[j]])));
+    }
   }
   curves_.resize(features_.num_curves);
   for (auto& curve : curves_) curve = std::make_unique<Curve>();
@@ -269,23 +279,26 @@ SurfaceModel::OnPatch SurfaceModel::onto_patch(const Vec3& p, const Nearest& fac
 
 // The patch of the closest triangle, or, when its closest point sits on the triangle's rim
 // (the smooth surface's closest point may lie across it), the best of the patches around that
-// edge or point, each from its own triangle's closest point.
-SurfaceModel::OnPatch SurfaceModel::onto_surface(const Vec3& p, Nearest& facet) const {
+// edge or point, each from its own triangle's closest point. Then the patches around the
+// triangle's corners that may hold a closer point still: where the input creases without a
+// feature curve, a neighbour's patch bulges past the closest triangle's (measured on the capped
+// SimVascular aorta's 60-degree folds, facets of 1-4.7 mm: a point 0.19 mm from the closest
+// facet's patch lay 0.016 mm from its neighbour's). A patch lies within bulge_ of its facet, so
+// a neighbour whose facet is farther than that from the best point so far is skipped unread.
+SurfaceModel::OnPatch SurfaceModel::onto_surface(const Vec3& p, Nearest& facet, bool whole_ring) const {
   OnPatch best = onto_patch(p, facet);
   if (reconstruction_ == Reconstruction::facets) return best;
-  const Triangle& f = input_.triangles[facet.triangle];
-  int inside[3], count = 0;
-  for (int i = 0; i < 3; ++i)
-    if (best.barycentric[i] > 1e-9) inside[count++] = f[i];
-  if (count == 3) return best;
-  double best_d = (best.point - p).squaredNorm();
   const int from = facet.triangle;
-  for (int u : incidence_.of(inside[0])) {
-    if (u == from) continue;
+  const Triangle f = input_.triangles[from];
+  double best_d = (best.point - p).squaredNorm();
+  const auto try_patch = [&](int u) {
+    const double reach = std::sqrt(best_d) + bulge_[u];
+    const Sphere& sphere = spheres_[u];  // first the sphere round the facet: cheaper than its closest point
+    if ((p - sphere.center).squaredNorm() >= (reach + sphere.radius) * (reach + sphere.radius)) return;
     const Triangle& g = input_.triangles[u];
-    if (count == 2 && std::find(g.begin(), g.end(), inside[1]) == g.end()) continue;
     const Nearest other{mesh::closest_point_on_triangle(p, input_.points[g[0]], input_.points[g[1]], input_.points[g[2]]),
                         u};
+    if ((other.point - p).squaredNorm() >= reach * reach) return;
     const OnPatch on = onto_patch(p, other);
     const double d = (on.point - p).squaredNorm();
     if (d < best_d) {
@@ -293,13 +306,27 @@ SurfaceModel::OnPatch SurfaceModel::onto_surface(const Vec3& p, Nearest& facet) 
       best = on;
       facet = other;
     }
+  };
+  if (whole_ring) {
+    for (int v : f)
+      for (int u : incidence_.of(v))
+        if (u != from) try_patch(u);
+    return best;
+  }
+  int inside[3], count = 0;
+  for (int i = 0; i < 3; ++i)
+    if (best.barycentric[i] > 1e-9) inside[count++] = f[i];
+  if (count == 3) return best;
+  for (int u : incidence_.of(inside[0])) {
+    const Triangle& g = input_.triangles[u];
+    if (u != from && (count == 1 || std::find(g.begin(), g.end(), inside[1]) != g.end())) try_patch(u);
   }
   return best;
 }
 
-SurfaceModel::Nearest SurfaceModel::nearest(const Vec3& p, int hint) const {
+SurfaceModel::Nearest SurfaceModel::nearest(const Vec3& p, int hint, bool whole_ring) const {
   Nearest facet = nearest_facet(p, hint);
-  return {onto_surface(p, facet).point, facet.triangle};
+  return {onto_surface(p, facet, whole_ring).point, facet.triangle};
 }
 
 SurfaceModel::Nearest SurfaceModel::nearest_facet(const Vec3& p, int hint) const {
@@ -311,9 +338,9 @@ SurfaceModel::Nearest SurfaceModel::nearest_facet(const Vec3& p, int hint) const
   return {hit.point, hit.triangle};
 }
 
-Projection SurfaceModel::project(const Vec3& p, int hint) const {
+Projection SurfaceModel::project(const Vec3& p, int hint, bool whole_ring) const {
   Nearest facet = nearest_facet(p, hint);
-  const OnPatch on = onto_surface(p, facet);
+  const OnPatch on = onto_surface(p, facet, whole_ring);
   return finish(on.point, facet.triangle, on.barycentric);
 }
 

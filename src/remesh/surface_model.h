@@ -72,16 +72,23 @@ class SurfaceModel {
   // point: on a thin vessel it stays on the same wall. On the smooth surface (phong): the closest
   // triangle's patch, from the triangle's closest point by Gauss-Newton steps in its barycentric
   // coordinates (within the triangle; the patches meet continuously at its edges).
-  Projection project(const Vec3& p, int hint = -1) const;
+  // `whole_ring`: as nearest() below.
+  Projection project(const Vec3& p, int hint = -1, bool whole_ring = false) const;
   Projection project_on_curve(int curve, const Vec3& p) const;
   // Only the closest point and its input triangle (no normal, no metric), found as project()
   // finds it; and the distance to it (global without a hint; local with one: never smaller).
+  // `whole_ring`: also the patches round the closest facet's corners that may hold a closer
+  // point (where the input creases without a feature curve, a neighbour's patch can bulge past
+  // the closest facet's: 0.19 mm against 0.016 on the capped SimVascular aorta). Never farther,
+  // and dearer: the distance bound's checks ask for it only where the first answer is over.
   struct Nearest {
     Vec3 point;
     int triangle;
   };
-  Nearest nearest(const Vec3& p, int hint = -1) const;
-  double distance(const Vec3& p, int hint = -1) const { return (nearest(p, hint).point - p).norm(); }
+  Nearest nearest(const Vec3& p, int hint = -1, bool whole_ring = false) const;
+  double distance(const Vec3& p, int hint = -1, bool whole_ring = false) const {
+    return (nearest(p, hint, whole_ring).point - p).norm();
+  }
   // The distance to the input's triangles themselves, whatever the reconstruction.
   double facet_distance(const Vec3& p, int hint = -1) const {
     return (nearest_facet(p, hint).point - p).norm();
@@ -104,7 +111,7 @@ class SurfaceModel {
   };
   OnPatch onto_patch(const Vec3& p, const Nearest& facet) const;
   // The same over the patches around the rim point it may stop at; `facet` becomes the winner's.
-  OnPatch onto_surface(const Vec3& p, Nearest& facet) const;
+  OnPatch onto_surface(const Vec3& p, Nearest& facet, bool whole_ring) const;
   void in_rim_planes(const mesh::EdgeMap& edges);
   // Phong's normal at each corner of a triangle (zero at feature points: no displacement).
   std::array<Vec3, 3> corner_normals(int triangle) const;
@@ -125,6 +132,7 @@ class SurfaceModel {
   std::vector<Vec3> copy_normals_;    // per point copy (analysis::Features)
   std::vector<Vec3> fitted_normals_;  // per point, for the smooth surface (analysis::vertex_normals)
   std::vector<char> rigid_;           // per point: on a crease or label border (no smooth normal)
+  std::vector<double> bulge_;         // per triangle: how far its patch strays from it at most
   std::vector<std::unique_ptr<Curve>> curves_;
 };
 

@@ -624,15 +624,19 @@ struct VesselInfo {
 // The remesher's final refinement for the distance bound splits edges whose new point may land next
 // to an existing one: a sliver no flip or move mends (this STL, anisotropic at 20000 triangles, as a
 // user runs it: an edge of 0.005 mm among 0.4 mm ones, quality 0.027). Collapsed within the bound.
-TEST(CliRemesh, TheFinalRefinementLeavesNoSliverOnTheCappedAorta) {
+// The capped SimVascular aorta's anisotropic mesh: the final refinement once split 11 times at a
+// fold of the input (facets of 1-4.7 mm meeting at up to 60 degrees) without meeting the bound
+// (2.65 % of the radius), leaving slivers (worst quality 0.027, then 0.22 once collapsed): the
+// strays were the distance to the wrong patch (the closest facet's; a neighbour's was closer).
+TEST(CliRemesh, TheCappedAortaHoldsTheBoundAtItsFoldsWithoutSlivers) {
   VESSELMESH_REQUIRE_SHARED(path, "vessels/simvascular_demo_aorta_iliacs_capped_cm.stl");
   test::TemporaryFolder tmp;
   const RunResult r = run({"remesh", path, "--units", "cm", "--size", "anisotropic", "--target-triangles", "20000",
                            "-o", tmp.path("a.vtp"), "--json", "-q"});
   ASSERT_EQ(r.code, 0) << r.err;
   const Json j = r.json();
-  EXPECT_GT(j["operations"]["distance_refinements"].get<int>(), 0);  // the final refinement acted
-  EXPECT_GE(j["min_quality"].get<double>(), 0.15);
+  EXPECT_LE(j["hausdorff_relative"].get<double>(), 0.02);  // the default bound
+  EXPECT_GE(j["min_quality"].get<double>(), 0.5);          // measured 0.73
   EXPECT_GE(j["mean_quality"].get<double>(), 0.85);
 }
 
