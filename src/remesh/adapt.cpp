@@ -3,6 +3,7 @@
 #include "mesh/connectivity.h"
 #include "mesh/error.h"
 #include "mesh/geometry.h"
+#include "remesh/bound.h"
 #include "remesh/dynamic_mesh.h"
 #include "sizing/metric.h"
 #include "sizing/size_field.h"
@@ -626,91 +627,6 @@ RemeshStats measure(const TriMesh& mesh, const std::vector<Sym3>& metric, const 
   return s;
 }
 
-namespace {
-
-// Per input point, the largest distance the output may keep from the input there (inf: none).
-// Without radii, the radius is 1 / max(|k1|, |k2|), but never below a quarter of its median
-// over the surface: a segmentation's bumps and a closed model's rounded ends curve far more
-// than the vessel, and bounding by them would refine every bump.
-std::vector<double> distance_bounds(const TriMesh& input, const RemeshOptions& o, const analysis::CurvatureField* c) {
-  std::vector<double> bound(input.points.size(), o.hausdorff > 0.0 ? o.hausdorff : std::numeric_limits<double>::infinity());
-  if (!(o.hausdorff_relative > 0.0)) return bound;
-  std::vector<double> radius(input.points.size(), 0.0);
-  if (o.input_radius) {
-    radius = *o.input_radius;
-  } else {
-    for (int v = 0; v < input.num_points(); ++v) {
-      const double k = std::max(std::abs(c->k1[v]), std::abs(c->k2[v]));
-      radius[v] = k > 0.0 ? 1.0 / k : std::numeric_limits<double>::infinity();
-    }
-    std::vector<double> sorted = radius;
-    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-    const double floor = 0.25 * sorted[sorted.size() / 2];
-    for (double& r : radius) r = std::max(r, floor);
-  }
-  for (int v = 0; v < input.num_points(); ++v)
-    if (radius[v] > 0.0 && std::isfinite(radius[v])) bound[v] = std::min(bound[v], o.hausdorff_relative * radius[v]);
-  return bound;
-}
-
-// M intersected with the chord bound for half the distance bound (edges up to sqrt 2 long then
-// stray at most the bound),
-// refining tenfold at most; `changed` counts the points where that made M finer.
-std::vector<Sym3> bounded_metrics(const std::vector<Sym3>& metrics, const std::vector<double>& bound,
-                                  const analysis::CurvatureField& c, int& changed, BoundPeak& peak) {
-  std::vector<Sym3> out = metrics;
-  changed = 0;
-  for (size_t v = 0; v < metrics.size(); ++v) {
-    if (!std::isfinite(bound[v])) continue;
-    Vec3 sizes;
-    Eigen::Matrix3d directions;
-    sizing::metric_sizes(metrics[v], sizes, directions);
-    const bool anisotropic = sizes.maxCoeff() > 1.05 * sizes.minCoeff();
-    const Sym3 g = sizing::clamp_sizes(sizing::chord_metric(c, static_cast<int>(v), 0.5 * bound[v], anisotropic),
-                                       0.1 * sizes.minCoeff(), std::numeric_limits<double>::infinity());
-    out[v] = sizing::intersect(metrics[v], g);
-    const double factor = out[v].matrix().trace() / metrics[v].matrix().trace();
-    changed += factor > 1.01;
-    peak.raise(static_cast<int>(v), factor);
-  }
-  return out;
-}
-
-// What a run works to: the features, the distance bound per input point and the metric
-// intersected with the bound's chord metric.
-struct Prepared {
-  analysis::Features features;
-  std::vector<double> bound;
-  std::vector<Sym3> metric;
-  int geometric_points = 0;
-  BoundPeak peak;
-};
-
-Prepared prepare(const TriMesh& input, const std::vector<Sym3>& metrics, const RemeshOptions& options) {
-  Prepared p;
-  p.features = analysis::detect_features(input, options.features);
-  const bool bounded = options.hausdorff > 0.0 || options.hausdorff_relative > 0.0;
-  std::optional<analysis::CurvatureField> own;
-  const analysis::CurvatureField* curvature = options.curvature;
-  if (!curvature && bounded && (options.geometric_metric || !options.input_radius)) {
-    own = analysis::patch_curvature(input, p.features);
-    curvature = &*own;
-  }
-  p.bound = distance_bounds(input, options, curvature);
-  p.metric = options.geometric_metric && bounded ? bounded_metrics(metrics, p.bound, *curvature, p.geometric_points, p.peak)
-                                                 : metrics;
-  return p;
-}
-
-}  // namespace
-
-std::vector<Sym3> effective_metric(const TriMesh& input, const std::vector<Sym3>& metrics, const RemeshOptions& options,
-                                   int* changed) {
-  Prepared p = prepare(input, metrics, options);
-  if (changed) *changed = p.geometric_points;
-  return std::move(p.metric);
-}
-
 RemeshResult adapt(const TriMesh& input, const std::vector<Sym3>& metrics, const RemeshOptions& options,
                    const Reporter& reporter) {
   if (metrics.size() != input.points.size())
@@ -723,7 +639,7 @@ RemeshResult adapt(const TriMesh& input, const std::vector<Sym3>& metrics, const
   if (options.curvature && options.curvature->size() != input.num_points())
     throw InternalError("the curvature does not belong to this surface");
   const auto start = std::chrono::steady_clock::now();
-  Prepared prepared = prepare(input, metrics, options);
+  BoundedField prepared = bounded_field(input, metrics, options);
   const std::vector<double>& bound = prepared.bound;
   const int geometric_points = prepared.geometric_points;
   SurfaceModel model(input, prepared.metric, std::move(prepared.features), options.reconstruction);

@@ -109,6 +109,15 @@ Sym3 chord_metric(const analysis::CurvatureField& c, int v, double eps, bool ani
   return Sym3::from_matrix(d1 * e1 * e1.transpose() + d2 * e2 * e2.transpose() + dmax * n * n.transpose());
 }
 
+Sym3 stretched_chord_metric(const analysis::CurvatureField& c, int v, double eps, double stretch) {
+  const bool first = std::abs(c.k1[v]) >= std::abs(c.k2[v]);
+  const double d = std::max(std::abs(c.k1[v]), std::abs(c.k2[v])) / (8.0 * eps);
+  if (c.normal[v].squaredNorm() == 0.0) return Sym3::from_matrix(d * Eigen::Matrix3d::Identity());
+  const Vec3 &round = first ? c.dir1[v] : c.dir2[v], &along = first ? c.dir2[v] : c.dir1[v], &n = c.normal[v];
+  return Sym3::from_matrix(d * round * round.transpose() + d / (stretch * stretch) * along * along.transpose() +
+                           d * n * n.transpose());
+}
+
 SizeKind parse_size_kind(const std::string& name) {
   if (name == "uniform") return SizeKind::uniform;
   if (name == "distance") return SizeKind::distance;

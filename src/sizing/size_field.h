@@ -73,6 +73,9 @@ SizeField make_size_field(const TriMesh& mesh, const SizingOptions& options, con
 // h_i = sqrt(8 eps / |k_i|) along each principal direction (no bound where |k_i| = 0), the
 // normal direction as the finer one.
 Sym3 chord_metric(const analysis::CurvatureField& curvature, int v, double eps, bool anisotropic);
+// The isotropic chord bound with its size along the smaller principal curvature's direction
+// `stretch` times the other's (a tube: the bound lies round it); the normal as the finer.
+Sym3 stretched_chord_metric(const analysis::CurvatureField& curvature, int v, double eps, double stretch);
 
 // (4 / sqrt 3) sum over points of (mixed area) x (tangent density of the metric).
 double predicted_triangles(const TriMesh& mesh, const std::vector<Sym3>& metrics);

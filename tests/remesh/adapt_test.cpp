@@ -489,8 +489,9 @@ double thin_daughter_need(double from, double to) {
 }
 
 // The isotropic kinds asked far fewer triangles than the thin daughter needs: its triangles at
-// least 0.8 times what the bound needs there (the bound held) and at most twice (1.8 to 1.9 times
-// now, the chord metric isotropic; issue 51 asks 1.25, still open); angles >= 20 degrees (the
+// least 0.8 times what the bound needs there (the bound held) and at most 1.25 times (issue 51;
+// 1.21 measured with the bound's chord metric longer along the tube, 1.8 to 1.9 with it
+// isotropic); angles >= 20 degrees (the
 // curvature kind's were 17 at the open ends' rims, where a plane cut's needles made the curvature
 // 2600 / mm); the least count reported, and every kind within 3 % of a count above it.
 TEST(Remesh, AThinBranchHoldsTheBoundAndTheAnglesAndCountsAboveItsLeast) {
@@ -513,7 +514,7 @@ TEST(Remesh, AThinBranchHoldsTheBoundAndTheAnglesAndCountsAboveItsLeast) {
     if (kind != sizing::SizeKind::anisotropic) {
       const RemeshResult few = run(2000.0);
       const int on_thin = thin_daughter_triangles(few.mesh, from, to);
-      EXPECT_LE(on_thin, 2.0 * need) << name;
+      EXPECT_LE(on_thin, 1.25 * need) << name;
       EXPECT_GE(on_thin, 0.8 * need) << name;
       EXPECT_LE(few.stats.hausdorff_relative, 0.02 + 1e-9) << name;
       EXPECT_GE(few.stats.min_angle_deg, 20.0) << name;
