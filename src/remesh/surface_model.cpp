@@ -279,8 +279,8 @@ SurfaceModel::OnPatch SurfaceModel::onto_patch(const Vec3& p, const Nearest& fac
 
 // The patch of the closest triangle, or, when its closest point sits on the triangle's rim
 // (the smooth surface's closest point may lie across it), the best of the patches around that
-// edge or point, each from its own triangle's closest point. Then the patches around the
-// triangle's corners that may hold a closer point still: where the input creases without a
+// edge or point, each from its own triangle's closest point. With `whole_ring`, every patch round
+// the triangle's corners that may hold a closer point still: where the input creases without a
 // feature curve, a neighbour's patch bulges past the closest triangle's (measured on the capped
 // SimVascular aorta's 60-degree folds, facets of 1-4.7 mm: a point 0.19 mm from the closest
 // facet's patch lay 0.016 mm from its neighbour's). A patch lies within bulge_ of its facet, so

@@ -110,7 +110,8 @@ class SurfaceModel {
     Vec3 point, barycentric;
   };
   OnPatch onto_patch(const Vec3& p, const Nearest& facet) const;
-  // The same over the patches around the rim point it may stop at; `facet` becomes the winner's.
+  // The same over the patches around the rim point it may stop at (`whole_ring`: round the
+  // triangle's corners, as nearest() says); `facet` becomes the winner's.
   OnPatch onto_surface(const Vec3& p, Nearest& facet, bool whole_ring) const;
   void in_rim_planes(const mesh::EdgeMap& edges);
   // Phong's normal at each corner of a triangle (zero at feature points: no displacement).
