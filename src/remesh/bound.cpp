@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <queue>
 
 namespace vesselmesh::remesh {
 namespace {
@@ -20,7 +21,8 @@ namespace {
 // took (empty without a relative bound).
 std::vector<double> distance_bounds(const TriMesh& input, const RemeshOptions& o, const analysis::CurvatureField* c,
                                     std::vector<double>& radius) {
-  std::vector<double> bound(input.points.size(), o.hausdorff > 0.0 ? o.hausdorff : std::numeric_limits<double>::infinity());
+  const double absolute = o.hausdorff > 0.0 ? o.hausdorff : std::numeric_limits<double>::infinity();
+  std::vector<double> bound(input.points.size(), absolute);
   radius.clear();
   if (!(o.hausdorff_relative > 0.0)) return bound;
   radius.assign(input.points.size(), 0.0);
@@ -60,6 +62,36 @@ double tube_stretch(const analysis::CurvatureField& c, int v, double radius) {
   return 1.0 + (kMaxStretch - 1.0) * std::clamp((0.5 - ratio) / 0.4, 0.0, 1.0);
 }
 
+// Per input point, the distance to the nearest feature-curve point along the input's edges
+// (Dijkstra; infinite without curves).
+std::vector<double> distance_to_curves(const TriMesh& input, const analysis::Features& features) {
+  std::vector<double> d(input.points.size(), std::numeric_limits<double>::infinity());
+  std::vector<std::vector<std::pair<int, double>>> next(input.points.size());
+  for (const auto& [a, b] : features.edges.edges) {
+    const double l = (input.points[a] - input.points[b]).norm();
+    next[a].push_back({b, l});
+    next[b].push_back({a, l});
+  }
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+  for (size_t v = 0; v < d.size(); ++v)
+    if (features.kind[v] != analysis::PointKind::free) {
+      d[v] = 0.0;
+      queue.push({0.0, static_cast<int>(v)});
+    }
+  while (!queue.empty()) {
+    const auto [dv, v] = queue.top();
+    queue.pop();
+    if (dv > d[v]) continue;
+    for (const auto& [u, l] : next[v])
+      if (dv + l < d[u]) {
+        d[u] = dv + l;
+        queue.push({d[u], u});
+      }
+  }
+  return d;
+}
+
 // M intersected with the chord bound for half the distance bound (edges up to sqrt 2 long then
 // stray at most the bound), refining tenfold at most; `changed` counts the points where that
 // made M finer. An isotropic kind's (M isotropic everywhere) is longer along tubes (tube_stretch)
@@ -70,7 +102,8 @@ double tube_stretch(const analysis::CurvatureField& c, int v, double radius) {
 constexpr double kBoundGradation = 1.3;
 std::vector<Sym3> bounded_metrics(const TriMesh& input, const std::vector<Sym3>& metrics,
                                   const std::vector<double>& bound, const std::vector<double>& radius,
-                                  const analysis::CurvatureField& c, int& changed, BoundPeak& peak) {
+                                  const analysis::CurvatureField& c, const analysis::Features& features,
+                                  int& changed, BoundPeak& peak) {
   std::vector<Vec3> sizes(metrics.size());
   bool isotropic_field = true;  // an isotropic kind's (an anisotropic field is isotropic where it is clamped)
   for (size_t v = 0; v < metrics.size(); ++v) {
@@ -79,12 +112,19 @@ std::vector<Sym3> bounded_metrics(const TriMesh& input, const std::vector<Sym3>&
     isotropic_field = isotropic_field && !(sizes[v].maxCoeff() > 1.05 * sizes[v].minCoeff());
   }
   const bool stretch_tubes = isotropic_field && !radius.empty();
+  // Near a feature curve (an open end's rim keeps its polygon) the stretch fades in: none within
+  // one round size of it, all from three (stretched triangles against a rim fell to 23 degrees).
+  const std::vector<double> to_curve = stretch_tubes ? distance_to_curves(input, features) : std::vector<double>();
   std::vector<Sym3> out = metrics;
   for (size_t v = 0; v < metrics.size(); ++v) {
     if (!std::isfinite(bound[v])) continue;
     const int i = static_cast<int>(v);
     const bool anisotropic = sizes[v].maxCoeff() > 1.05 * sizes[v].minCoeff();
-    const double stretch = stretch_tubes ? tube_stretch(c, i, radius[v]) : 1.0;
+    double stretch = stretch_tubes ? tube_stretch(c, i, radius[v]) : 1.0;
+    if (stretch > 1.0) {
+      const double round = std::sqrt(8.0 * 0.5 * bound[v] / std::max(std::abs(c.k1[v]), std::abs(c.k2[v])));
+      stretch = 1.0 + (stretch - 1.0) * std::clamp((to_curve[v] / round - 1.0) / 2.0, 0.0, 1.0);
+    }
     const Sym3 chord = stretch > 1.0 ? sizing::stretched_chord_metric(c, i, 0.5 * bound[v], stretch)
                                      : sizing::chord_metric(c, i, 0.5 * bound[v], anisotropic);
     const Sym3 g = sizing::clamp_sizes(chord, 0.1 * sizes[v].minCoeff(), std::numeric_limits<double>::infinity());
@@ -115,7 +155,7 @@ BoundedField bounded_field(const TriMesh& input, const std::vector<Sym3>& metric
   std::vector<double> radius;
   p.bound = distance_bounds(input, options, curvature, radius);
   p.metric = options.geometric_metric && bounded
-                 ? bounded_metrics(input, metrics, p.bound, radius, *curvature, p.geometric_points, p.peak)
+                 ? bounded_metrics(input, metrics, p.bound, radius, *curvature, p.features, p.geometric_points, p.peak)
                  : metrics;
   return p;
 }
