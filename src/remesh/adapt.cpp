@@ -6,7 +6,6 @@
 #include "remesh/bound.h"
 #include "remesh/dynamic_mesh.h"
 #include "sizing/metric.h"
-#include "sizing/size_field.h"
 
 #include <fmt/format.h>
 

@@ -115,9 +115,10 @@ remesh::RemeshResult remesh_level(const TriMesh& input, const std::vector<double
     for (size_t v = 0; v < metric.size(); ++v) metric[v] = sizing::isotropic_metric(sizes[v]);
     return metric;
   };
-  predicted = sizing::predicted_triangles(input, metric_of(target));
+  const std::vector<Sym3> asked = metric_of(target);
+  predicted = sizing::predicted_triangles(input, asked);
   reporter.info(fmt::format("study: the level's sizes predict about {:.0f} triangles", predicted));
-  const remesh::RemeshResult first = remesh::adapt(input, metric_of(target), options, reporter);
+  const remesh::RemeshResult first = remesh::adapt(input, asked, options, reporter);
   std::vector<double> sizes = calibrated_sizes(input, target, target, first.mesh);
   remesh::RemeshResult made = remesh::adapt(input, metric_of(sizes), options, reporter);
   const double count = static_cast<double>(made.mesh.num_triangles());

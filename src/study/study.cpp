@@ -705,9 +705,9 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       if (envelope_level) {
         reporter.info(fmt::format("study: {} ({} of {}): surface mesh {:.3g} times finer than every compared mesh",
                                   name, m + 1, plan.size(), scale));
-        std::vector<double> target(surface.points.size());
-        for (size_t v = 0; v < target.size(); ++v) target[v] = envelope.sizes[v] / scale;
-        remeshed = remesh_level(surface, target, options, run.target_triangles, reporter);
+        std::vector<double> sizes(surface.points.size());
+        for (size_t v = 0; v < sizes.size(); ++v) sizes[v] = envelope.sizes[v] / scale;
+        remeshed = remesh_level(surface, sizes, options, run.target_triangles, reporter);
       } else {
         reporter.info(fmt::format("study: {} ({} of {}): surface mesh of about {:.0f} triangles", name, m + 1,
                                   plan.size(), run.target_triangles));
