@@ -49,9 +49,10 @@ struct RemeshOptions {
   Reconstruction reconstruction = Reconstruction::phong;
   // The metric is first intersected with the chord bound for half the distance bound
   // (sizing::chord_metric; isotropic where the metric is, along the principal directions where
-  // it is not; an isotropic kind's up to 1.55 times longer along a tube, then graded by 1.3),
-  // never refining more than tenfold: the bound shapes the mesh, as in mmgs, instead of being
-  // enforced by splits at the end (remesh/bound.h). The figures are against that metric.
+  // it is not; an isotropic kind's up to 1.55 times longer along a tube, then graded by 1.3,
+  // its last flips and moves then judging shapes in space), never refining more than tenfold:
+  // the bound shapes the mesh, as in mmgs, instead of being enforced by splits at the end
+  // (remesh/bound.h). The figures are against that metric.
   bool geometric_metric = true;
   // The input's curvature (per point, e.g. what sizing used); computed on each side of the
   // creases when absent.

@@ -93,17 +93,17 @@ std::vector<double> distance_to_curves(const TriMesh& input, const analysis::Fea
 }
 
 // M intersected with the chord bound for half the distance bound (edges up to sqrt 2 long then
-// stray at most the bound), refining tenfold at most; `changed` counts the points where that
-// made M finer. An isotropic kind's (M isotropic everywhere) is longer along tubes (tube_stretch)
+// stray at most the bound), refining tenfold at most; p.geometric_points counts the points
+// where that made M finer. An isotropic kind's (M isotropic everywhere) is longer along tubes (tube_stretch)
 // and then graded as the size fields are (sizing::grade_metrics, 1.3): where the bound takes
 // over from the field (a thin branch off a wide vessel), its sizes meet the field's over a few
 // edges rather than across one (without it the crotch of issue 51's bifurcation fell to 17
 // degrees). An anisotropic kind's is left as it was.
+// Fills p's metric, geometric_points, peak and stretched from its bound and features.
 constexpr double kBoundGradation = 1.3;
-std::vector<Sym3> bounded_metrics(const TriMesh& input, const std::vector<Sym3>& metrics,
-                                  const std::vector<double>& bound, const std::vector<double>& radius,
-                                  const analysis::CurvatureField& c, const analysis::Features& features,
-                                  int& changed, BoundPeak& peak) {
+void bounded_metrics(const TriMesh& input, const std::vector<Sym3>& metrics, const std::vector<double>& radius,
+                     const analysis::CurvatureField& c, BoundedField& p) {
+  const std::vector<double>& bound = p.bound;
   std::vector<Vec3> sizes(metrics.size());
   bool isotropic_field = true;  // an isotropic kind's (an anisotropic field is isotropic where it is clamped)
   for (size_t v = 0; v < metrics.size(); ++v) {
@@ -114,7 +114,7 @@ std::vector<Sym3> bounded_metrics(const TriMesh& input, const std::vector<Sym3>&
   const bool stretch_tubes = isotropic_field && !radius.empty();
   // Near a feature curve (an open end's rim keeps its polygon) the stretch fades in: none within
   // one round size of it, all from three (stretched triangles against a rim fell to 23 degrees).
-  const std::vector<double> to_curve = stretch_tubes ? distance_to_curves(input, features) : std::vector<double>();
+  const std::vector<double> to_curve = stretch_tubes ? distance_to_curves(input, p.features) : std::vector<double>();
   std::vector<Sym3> out = metrics;
   for (size_t v = 0; v < metrics.size(); ++v) {
     if (!std::isfinite(bound[v])) continue;
@@ -124,6 +124,7 @@ std::vector<Sym3> bounded_metrics(const TriMesh& input, const std::vector<Sym3>&
     if (stretch > 1.0) {
       const double round = std::sqrt(8.0 * 0.5 * bound[v] / std::max(std::abs(c.k1[v]), std::abs(c.k2[v])));
       stretch = 1.0 + (stretch - 1.0) * std::clamp((to_curve[v] / round - 1.0) / 2.0, 0.0, 1.0);
+      p.stretched = p.stretched || stretch > 1.0;
     }
     const Sym3 chord = stretch > 1.0 ? sizing::stretched_chord_metric(c, i, 0.5 * bound[v], stretch)
                                      : sizing::chord_metric(c, i, 0.5 * bound[v], anisotropic);
@@ -131,13 +132,13 @@ std::vector<Sym3> bounded_metrics(const TriMesh& input, const std::vector<Sym3>&
     out[v] = sizing::intersect(metrics[v], g);
   }
   if (stretch_tubes) sizing::grade_metrics(input, out, kBoundGradation);
-  changed = 0;
+  p.geometric_points = 0;
   for (size_t v = 0; v < metrics.size(); ++v) {
     const double factor = out[v].matrix().trace() / metrics[v].matrix().trace();
-    changed += factor > 1.01;
-    peak.raise(static_cast<int>(v), factor);
+    p.geometric_points += factor > 1.01;
+    p.peak.raise(static_cast<int>(v), factor);
   }
-  return out;
+  p.metric = std::move(out);
 }
 
 }  // namespace
@@ -154,9 +155,10 @@ BoundedField bounded_field(const TriMesh& input, const std::vector<Sym3>& metric
   }
   std::vector<double> radius;
   p.bound = distance_bounds(input, options, curvature, radius);
-  p.metric = options.geometric_metric && bounded
-                 ? bounded_metrics(input, metrics, p.bound, radius, *curvature, p.features, p.geometric_points, p.peak)
-                 : metrics;
+  if (options.geometric_metric && bounded)
+    bounded_metrics(input, metrics, radius, *curvature, p);
+  else
+    p.metric = metrics;
   return p;
 }
 

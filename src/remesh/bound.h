@@ -18,6 +18,10 @@ struct BoundedField {
   std::vector<Sym3> metric;   // per input point: the field within the bound's chord metric
   int geometric_points = 0;   // points whose metric the chord bound refined
   BoundPeak peak;             // where it refined most
+  // An isotropic kind's field, made longer along tubes by the bound (bounded_metrics): its
+  // triangles are stretched there by up to 1.55, so the remesher's last flips and moves judge
+  // shapes in space (the user asked for an isotropic mesh), within the bound and the count.
+  bool stretched = false;
 };
 
 BoundedField bounded_field(const TriMesh& input, const std::vector<Sym3>& metrics, const RemeshOptions& options);

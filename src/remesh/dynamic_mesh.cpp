@@ -106,6 +106,10 @@ double DynamicMesh::edge_length(int a, int b) const {
 }
 
 double DynamicMesh::quality(const Triangle& f) const {
+  if (shapes_in_space) {
+    const Sym3 unit{{1.0, 0.0, 0.0, 1.0, 0.0, 1.0}};
+    return sizing::triangle_quality(position[f[0]], position[f[1]], position[f[2]], unit, unit, unit);
+  }
   return sizing::triangle_quality(position[f[0]], position[f[1]], position[f[2]], metric[f[0]], metric[f[1]],
                                   metric[f[2]]);
 }

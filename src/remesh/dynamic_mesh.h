@@ -54,8 +54,11 @@ class DynamicMesh {
   // Length of a-b in the metric, with the size varying geometrically between the ends.
   double edge_length(int a, int b) const;
   // 4 sqrt(3) area / sum of squared edge lengths, all in the mean metric of the corners:
-  // 1 for an equilateral triangle of the metric, 0 for a degenerate one.
+  // 1 for an equilateral triangle of the metric, 0 for a degenerate one. With `shapes_in_space`,
+  // in space instead (the metric's sizes no longer matter, only the shape: the remesher's last
+  // flips and moves on an isotropic kind whose bound stretched it along tubes, Remesher::run).
   double quality(const Triangle& f) const;
+  bool shapes_in_space = false;
 
   // The surface: triangles, labels, and the metric per point (dead entries dropped).
   // With `hints`, each output point's input triangle (for local distance queries).

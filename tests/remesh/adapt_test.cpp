@@ -493,7 +493,9 @@ double thin_daughter_need(double from, double to) {
 // 1.21 measured with the bound's chord metric longer along the tube, 1.8 to 1.9 with it
 // isotropic); angles >= 20 degrees (the
 // curvature kind's were 17 at the open ends' rims, where a plane cut's needles made the curvature
-// 2600 / mm); the least count reported, and every kind within 3 % of a count above it.
+// 2600 / mm), >= 26 at the count the bound sets (the triangles stretched along the daughter judged
+// in space by the last flips and moves: 27.2-27.5 degrees, 24.2-25.7 judged in the metric); the
+// least count reported, and every kind within 3 % of a count above it.
 TEST(Remesh, AThinBranchHoldsTheBoundAndTheAnglesAndCountsAboveItsLeast) {
   const TriMesh input = synth::bifurcation(thin_branch());
   const analysis::CurvatureField curvature = analysis::curvature(input);
@@ -517,7 +519,7 @@ TEST(Remesh, AThinBranchHoldsTheBoundAndTheAnglesAndCountsAboveItsLeast) {
       EXPECT_LE(on_thin, 1.25 * need) << name;
       EXPECT_GE(on_thin, 0.8 * need) << name;
       EXPECT_LE(few.stats.hausdorff_relative, 0.02 + 1e-9) << name;
-      EXPECT_GE(few.stats.min_angle_deg, 20.0) << name;
+      EXPECT_GE(few.stats.min_angle_deg, 26.0) << name;
       ASSERT_GT(few.least_count, 2000) << name << ": " << few.count_note;
       above = std::max(above, 1.05 * few.least_count);
     }
@@ -558,6 +560,32 @@ TEST(Remesh, ACappedFacetedThinBranchKeepsItsAngles) {
       }
     }
   }
+}
+
+// Issue 51: the aortic arch's uniform mesh at 20,000 triangles, whose bound stretches it along the
+// small supra-aortic branches (to 1.55 times): its smallest angle 29.2 degrees with the last flips
+// and moves judging shapes in space, 24.8 when they judged them in the metric (there 36-43 degrees:
+// well shaped in the metric, stretched in space), 29.2 before the stretch; the count, the bound and
+// the metric's shapes as they were.
+TEST(Remesh, TheAorticArchsStretchedUniformMeshIsWellShapedInSpace) {
+  VESSELMESH_REQUIRE_SHARED(path, "vessels/gmsh_aortic_arch_open_cm.stl");
+  io::SurfaceFile file = io::read_surface(path, {.units = io::Unit::cm});
+  mesh::clean(file.mesh, {.find_self_intersections = false});
+  const TriMesh& input = file.mesh;
+  const analysis::CurvatureField curvature = analysis::curvature(input);
+  const auto [distance, radius] = local_radius(input);
+  ASSERT_TRUE(distance);
+  constexpr double kTarget = 20000.0;
+  const sizing::SizeField field = sizing::make_size_field(input, {.kind = sizing::SizeKind::uniform,
+                                                                  .target_triangles = kTarget},
+                                                          {.curvature = &curvature, .distance = &*distance});
+  RemeshOptions options;
+  options.input_radius = &radius;
+  const RemeshResult r = adapt_to_count(input, field.metric, kTarget, options);
+  EXPECT_GE(r.stats.min_angle_deg, 28.0);
+  EXPECT_GE(r.stats.mean_quality, 0.9);
+  EXPECT_NEAR(r.stats.triangles, kTarget, 0.03 * kTarget) << r.count_note;
+  EXPECT_LE(r.stats.hausdorff_relative, 0.02 + 1e-9);
 }
 
 // The quality targets on the real vessels, for the four size kinds at a common triangle count.
