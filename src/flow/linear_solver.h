@@ -114,6 +114,18 @@ inline std::string saddle_point_options() {
 // nozzle's Stokes start. The velocity block matters where the Schur side does not: SOR sweeps
 // instead of point-block Jacobi take 9.5 and 24.6, but their sweeps cost more (0.38 s a step
 // against 0.27 on the anastomosis); ILU with the factorization's upper part: README's figures.
+// The Schur complement's AMG cycle smooths by one Gauss-Seidel sweep forward on the way down and
+// one backward on the way up (hypre's l1 variants: Gauss-Seidel within a process, l1-scaled Jacobi
+// across processes, which converges however the points are split), where PETSc's default, a
+// symmetric sweep each way (for CG), costs twice the smoothing, about a quarter of a time step's
+// whole solve (hypre_BoomerAMGRelaxHybridGaussSeidel_core, 28 % of the run's samples in perf on the
+// anastomosis study's level 2); FGMRES needs no symmetric preconditioner. The same iterations and
+// 0.88-0.89 of the solve time on the FDA nozzle and the pipe, 0.99 on the anastomosis's curvature
+// mesh (bench/time_steps.sh, PIPE=1, two rounds), 0.76-0.83 on the study's level 2 (0.9 M unknowns,
+// 10 steps); tried there too: a V(0,1) cycle (23 % more iterations), P_max 4 truncation, aggressive
+// coarsening on two levels, a strong threshold of 0.7: none faster. So was a line-block Jacobi on the
+// velocity block (each chain of strongly coupled points, as across the layer, solved at once):
+// 6-13 % fewer iterations, each dearer (1.15 of the solve time on level 2).
 inline std::string time_step_options() {
   return "-ksp_type fgmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 10 "
          "-pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full "
@@ -121,7 +133,9 @@ inline std::string time_step_options() {
          "-fieldsplit_u_ksp_type preonly -fieldsplit_u_pc_type pbjacobi "
          "-fieldsplit_p_ksp_type preonly -fieldsplit_p_pc_type hypre -fieldsplit_p_pc_hypre_type boomeramg "
          "-fieldsplit_p_pc_hypre_boomeramg_coarsen_type HMIS -fieldsplit_p_pc_hypre_boomeramg_interp_type ext+i "
-         "-fieldsplit_p_pc_hypre_boomeramg_strong_threshold 0.6 -fieldsplit_p_pc_hypre_boomeramg_agg_nl 1";
+         "-fieldsplit_p_pc_hypre_boomeramg_strong_threshold 0.6 -fieldsplit_p_pc_hypre_boomeramg_agg_nl 1 "
+         "-fieldsplit_p_pc_hypre_boomeramg_relax_type_down l1-Gauss-Seidel "
+         "-fieldsplit_p_pc_hypre_boomeramg_relax_type_up backward-l1-Gauss-Seidel";
 }
 // The Stokes start of an unsteady run (a solver of its own, gone before the time steps): no mass
 // term, so its velocity block by SOR (PETSc's: local to each process under MPI; point-block Jacobi
