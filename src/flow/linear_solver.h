@@ -122,7 +122,8 @@ inline std::string saddle_point_options() {
 // anastomosis study's level 2); FGMRES needs no symmetric preconditioner. Iterations within 5 %
 // (on 3 processes too), 0.88-0.89 of the solve time on the FDA nozzle and the pipe, 0.99 on the
 // anastomosis's curvature mesh (bench/time_steps.sh, PIPE=1, two rounds), 0.76-0.83 on the study's
-// level 2 (0.9 M unknowns, 10 steps); the reduced study from nothing 2420 s against 2864. Tried there too: a V(0,1) cycle (23 % more iterations), P_max 4 truncation, aggressive
+// level 2 (0.9 M unknowns, 10 steps); the reduced study from nothing 2420 s against 2864. Tried
+// there too: a V(0,1) cycle (23 % more iterations), P_max 4 truncation, aggressive
 // coarsening on two levels, a strong threshold of 0.7: none faster. So was a line-block Jacobi on the
 // velocity block (each chain of strongly coupled points, as across the layer, solved at once):
 // 6-13 % fewer iterations, each dearer (1.15 of the solve time on level 2).
