@@ -95,7 +95,7 @@ std::vector<double> distance_to_curves(const TriMesh& input, const analysis::Fea
 // p.metric: M intersected with the chord bound for half the distance bound p.bound (edges up to
 // sqrt 2 long then stray at most the bound), refining tenfold at most; p.geometric_points counts
 // the points where that made M finer, p.peak where it did most. An isotropic kind's (M isotropic
-// everywhere) is longer along tubes (tube_stretch; p.stretched says where it was) and then graded
+// everywhere) is longer along tubes (tube_stretch; p.stretched says whether it was) and then graded
 // as the size fields are (sizing::grade_metrics, 1.3): where the bound takes over from the field
 // (a thin branch off a wide vessel), its sizes meet the field's over a few edges rather than
 // across one (without it the crotch of issue 51's bifurcation fell to 17 degrees). An anisotropic
