@@ -1,24 +1,33 @@
-// The FDA nozzle (issue 8's validation): `vesselmesh simulate`'s result on the nozzle of
-// `vesselmesh synth nozzle` against the FDA's measurements (conformance files of the five
-// laboratories, Re_throat = 500): the centerline axial velocity and the wall pressure along z.
+// The FDA nozzle (issue 8's and 47's validation): `vesselmesh simulate`'s result on the nozzle of
+// `vesselmesh synth nozzle` against the FDA's measurements (conformance files of the laboratories,
+// sudden-expansion orientation, any Reynolds number: the flow rate is the files'): the centerline
+// axial velocity, the wall pressure, the radial profiles of axial velocity at the stations and the
+// wall shear stress, each against every laboratory.
 //   bench_fda_nozzle RESULT_DIR EXPERIMENT_DIR OUT_DIR
 //   bench_fda_nozzle --series FINE_OUT MEDIUM_OUT COARSE_OUT SERIES_OUT
 // RESULT_DIR: simulate's output folder (the last frame of fluid.pvd is compared; the one before,
 // when there is one, says how steady it was). EXPERIMENT_DIR: the unzipped `experiment/` folder
-// (PIV_*_500_<lab>.txt; z in m, flow along +z). Prints the tables and the summary; writes
-// OUT_DIR/centerline_velocity.csv, wall_pressure.csv and their charts (SVG and PNG). The mesh is in mm
-// (as synth writes it). Pressures are compared as differences from the most downstream tap every
-// laboratory has (the measurements are gauge pressures with each laboratory's own zero).
-// --series: three levels' OUT_DIRs (their CSVs, and RESULT_DIR = OUT_DIR/flow for the point counts),
-// finest first: per station the three values, the observed order, the extrapolated value and the
-// finest level's GCI (study/gci.h, Celik et al. 2008), whether each level lies within the
-// laboratories' range, and each level's RMS difference; SERIES_OUT/series_velocity.csv and .svg/.png.
+// (*_<lab>.txt; z in m, flow along +z). Prints the tables and the summary; writes
+// OUT_DIR/comparison.json (the figures), centerline_velocity.csv, wall_pressure.csv,
+// velocity_profiles.csv, wall_shear_stress.csv and their charts (SVG and PNG; profile_z<Z> a
+// station's profiles). The mesh is in mm (as synth writes it). Pressures are compared as
+// differences from the most downstream tap every laboratory has (the measurements are gauge
+// pressures with each laboratory's own zero); profiles as the mean of ours along four directions at
+// each measured radius (the nozzle is axisymmetric); the wall shear stress as its magnitude, the
+// mean over the side wall within 0.5 mm of each station (on the step, z = 0, the throat's wall).
+// --series: three levels' OUT_DIRs (their CSVs and comparison.json, and RESULT_DIR = OUT_DIR/flow
+// for the point counts), finest first: per station the three values, the observed order, the
+// extrapolated value and the finest level's GCI (study/gci.h, Celik et al. 2008), whether each
+// level lies within the laboratories' range, and each level's RMS difference and other figures;
+// SERIES_OUT/series_velocity.csv and .svg/.png.
 #include "io/atomic_file.h"
+#include "io/conformance.h"
 #include "mesh/error.h"
 #include "post/fluid_sample.h"
 #include "study/chart.h"
 #include "study/gci.h"
 #include "study/raster.h"
+#include "synth/shapes.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -27,7 +36,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <set>
@@ -38,39 +47,16 @@ namespace {
 using namespace vesselmesh;
 using Curve = std::vector<std::pair<double, double>>;  // (z in mm, value), increasing z
 
-// The throat's mean velocity at the data files' flow, m/s: Q / (pi r_t^2), the RMS differences' scale.
-const double throat_mean = 5.20624e-6 / (M_PI * 4e-6);
-
-// The rows of section `keyword` of a conformance file (none when the laboratory has none).
-Curve read_section(const std::filesystem::path& file, const std::string& keyword, double z_scale) {
-  std::ifstream in(file);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream words(line);
-    std::string first;
-    words >> first;
-    if (first != keyword) continue;
-    int count = 0;
-    if (!std::getline(in, line) || !(std::istringstream(line) >> count) || count < 0)
-      throw InputError(fmt::format("{}: section {} has no row count", file.string(), keyword));
-    Curve curve;
-    for (int i = 0; i < count && std::getline(in, line); ++i) {
-      double z = 0.0, value = 0.0;
-      if (!(std::istringstream(line) >> z >> value))
-        throw InputError(fmt::format("{}: row {} of {} is not two numbers: {}", file.string(), i + 1, keyword, line));
-      curve.emplace_back(z * z_scale, value);
-    }
-    std::sort(curve.begin(), curve.end());
-    return curve;
-  }
-  return {};
-}
-
 struct Lab {
   std::string code;
-  Curve velocity, pressure;
+  Curve velocity, pressure,
+      wss;                           // along z: centerline axial velocity, wall pressure, wall shear stress
+  std::map<double, Curve> profiles;  // z mm -> (signed radius mm, axial velocity m/s)
+  double flow = 0.0;                 // m^3/s
 };
 
+// The laboratories' files of a folder (*.txt, each lab's code the last word of its name); all must
+// give the same flow rate.
 std::vector<Lab> read_labs(const std::string& folder) {
   std::vector<std::filesystem::path> files;
   for (const auto& entry : std::filesystem::directory_iterator(folder))
@@ -81,26 +67,37 @@ std::vector<Lab> read_labs(const std::string& folder) {
     Lab lab;
     const std::string stem = file.stem().string();
     lab.code = stem.substr(stem.rfind('_') + 1);
-    lab.velocity = read_section(file, "plot-z-distribution-axial-velocity", 1e3);
-    lab.pressure = read_section(file, "plot-wall-distribution-pressure", 1e3);
-    labs.push_back(lab);
+    const io::ConformanceFile data = io::read_conformance(file.string());
+    lab.flow = data.flow;
+    for (const io::ConformanceSection& s : data.sections) {
+      Curve rows;  // positions in mm, increasing
+      for (const auto& [position, value] : s.rows) rows.emplace_back(position * 1e3, value);
+      std::sort(rows.begin(), rows.end());
+      if (s.keyword == "plot-z-distribution-axial-velocity") lab.velocity = rows;
+      if (s.keyword == "plot-wall-distribution-pressure") lab.pressure = rows;
+      if (s.keyword == "plot-wall-distribution-wall-shear-stress") lab.wss = rows;
+      if (s.keyword == "plot-profile-axial-velocity-at-z" && !s.parameters.empty())
+        lab.profiles[std::round(s.parameters[0] * 1e4) / 10] = rows;  // the station in mm, to 0.1 mm
+    }
+    if (lab.flow <= 0.0) throw InputError(fmt::format("{}: no fluid-volumetric-flow-rate", file.string()));
+    if (!labs.empty() && std::abs(lab.flow - labs[0].flow) > 1e-3 * labs[0].flow)
+      throw InputError(
+          fmt::format("{}: flow rate {:g} m^3/s, {} gives {:g}", file.string(), lab.flow, labs[0].code, labs[0].flow));
+    labs.push_back(std::move(lab));
   }
   if (labs.empty()) throw InputError(fmt::format("{}: no laboratory files (*.txt)", folder));
   return labs;
 }
 
-// The wall pressure at z: the mean over the wall's points within `window` mm of z.
-double wall_pressure(const post::FluidField& f, const std::vector<int>& wall_points, double z, double window) {
-  double sum = 0.0;
-  int n = 0;
-  for (int v : wall_points)
-    if (std::abs(f.mesh.points[v].z() - z) <= window) sum += f.pressure[v], ++n;
-  return n ? sum / n : std::nan("");
+// The nozzle's wall radius at a station, mm; on the step (z = 0) the throat's, as the
+// laboratories' wall values there are the throat's.
+double station_radius(double z) {
+  return synth::nozzle_radius(synth::NozzleOptions{}, z - 1e-6);
 }
 
 struct Stats {
   double mean = 0.0, low = 0.0, high = 0.0;
-  int labs = 0;
+  int labs = 0;  // rows: a laboratory that measured two walls counts twice
 };
 
 // The laboratories' values at z (those that measured there).
@@ -125,121 +122,401 @@ std::vector<double> stations(const std::vector<Lab>& labs, Curve Lab::*which) {
   return z;
 }
 
+double rms(double sum2, int n) {
+  return n ? std::sqrt(sum2 / n) : std::nan("");
+}
+
+// What the comparisons share: the laboratories, our last frame (and the one before, when saved),
+// the wall's frame, and the figures and tables gathered for comparison.json and comparison.md.
+struct Comparison {
+  std::vector<Lab> labs;
+  post::WallSeries series;
+  post::FluidField field;
+  post::TetLocator locator;
+  post::WallField wall;
+  double throat_mean = 0.0;      // m/s: the flow rate over the throat's area, the RMS differences' scale
+  std::string out;
+  nlohmann::json summary;
+  std::string markdown;  // the tables, for docs/validation/fda_nozzle.md
+
+  Comparison(const std::string& results, const std::string& experiment, std::string out_dir)
+      : labs(read_labs(experiment)),
+        series(post::read_wall_series(results, "fluid")),
+        field(post::read_fluid_frame(series.frames.back())),
+        locator(field.mesh),
+        wall(post::read_wall_frame(post::read_wall_series(results).frames.back())),
+        throat_mean(labs[0].flow / (M_PI * 4e-6)),
+        out(std::move(out_dir)) {
+    if (series.length_unit != "mm")
+      throw InputError(fmt::format("{}: the mesh is in {}, not mm", results, series.length_unit));
+    if (wall.wss.size() != wall.mesh.points.size() || wall.mesh.points.empty())
+      throw InputError(fmt::format("{}: the wall's last frame has no wall shear stress on its points", results));
+  }
+
+  // Our axial velocity at (x, y, z), NaN outside the mesh.
+  double axial(const post::FluidField& f, double x, double y, double z) const {
+    const post::FluidSample s = post::sample_points(f, locator, {Vec3(x, y, z)})[0];
+    return s.inside ? s.velocity.z() : std::nan("");
+  }
+  // At signed radius r of station z: the mean over four directions (x, y, -x, -y), those inside.
+  double axial_at_radius(double r, double z) const {
+    double sum = 0.0;
+    int n = 0;
+    for (const auto& [cx, cy] : {std::pair{1.0, 0.0}, {0.0, 1.0}, {-1.0, 0.0}, {0.0, -1.0}})
+      if (const double u = axial(field, cx * r, cy * r, z); std::isfinite(u)) sum += u, ++n;
+    return n ? sum / n : std::nan("");
+  }
+  // The wall pressure at z: the mean of the pressure at 0.98 of the station's radius along eight
+  // directions, those inside (a tap reads the pressure where it is; a mean over the wall's points
+  // within a window blurs the drops at the throat's corners; 2 % inside the wall keeps the points
+  // within the faceted wall of 16 or more edges around).
+  double wall_pressure(double z) const {
+    const double r = 0.98 * station_radius(z);
+    double sum = 0.0;
+    int n = 0;
+    for (int k = 0; k < 8; ++k) {
+      const Vec3 p(r * std::cos(k * M_PI / 4), r * std::sin(k * M_PI / 4), z);
+      if (const post::FluidSample s = post::sample_points(field, locator, {p})[0]; s.inside) sum += s.pressure, ++n;
+    }
+    return n ? sum / n : std::nan("");
+  }
+  // The wall shear stress's magnitude at z: the mean over the wall's points within `window` mm of
+  // z on the station's side wall (within 0.3 mm of its radius: the step's face left out).
+  double wall_shear(double z, double window = 0.5) const {
+    const double radius = station_radius(z);
+    double sum = 0.0;
+    int n = 0;
+    for (size_t v = 0; v < wall.mesh.points.size(); ++v) {
+      const Vec3& q = wall.mesh.points[v];
+      if (std::abs(q.z() - z) <= window && std::abs(std::hypot(q.x(), q.y()) - radius) < 0.3)
+        sum += wall.wss[v].norm(), ++n;
+    }
+    return n ? sum / n : std::nan("");
+  }
+};
+
+// A chart of the laboratories' curves (dashed) and ours.
+void write_chart(const std::string& stem, const std::string& title, const std::string& x_label,
+                 const std::string& y_label, std::vector<study::Series> labs, study::Series ours) {
+  study::LineChart chart;
+  chart.title = title, chart.x_label = x_label, chart.y_label = y_label;
+  chart.series = std::move(labs);
+  chart.series.push_back(std::move(ours));
+  study::write_svg_and_png(stem, study::svg(chart));
+}
+
+// A chart along z: each laboratory's curve `which` (less its offset, where given) and ours from z0
+// to z1.
+void write_chart_along_z(const Comparison& c, const std::string& name, const std::string& title,
+                         const std::string& y_label, Curve Lab::*which, const std::map<std::string, double>& offset,
+                         double z0, double z1, const std::function<double(double)>& ours_at) {
+  std::vector<study::Series> labs;
+  for (const Lab& lab : c.labs) {
+    study::Series s{.name = "lab " + lab.code, .x = {}, .y = {}, .dashed = true};
+    const double shift = offset.count(lab.code) ? offset.at(lab.code) : 0.0;
+    for (const auto& [z, v] : lab.*which) s.x.push_back(z), s.y.push_back(v - shift);
+    if (!s.x.empty()) labs.push_back(s);
+  }
+  study::Series ours{.name = "vesselmesh", .x = {}, .y = {}, .dashed = false};
+  for (int i = 0; i <= 400; ++i) {
+    const double z = z0 + (z1 - z0) * i / 400.0;
+    ours.x.push_back(z), ours.y.push_back(ours_at(z));
+  }
+  write_chart(c.out + "/" + name, title, "z (mm), flow along +z", y_label, labs, ours);
+}
+
+void compare_centerline(Comparison& c) {
+  const std::string re = fmt::format("Re_throat = {:.0f}", 1056.0 * c.throat_mean * 4e-3 / 0.0035);
+  fmt::print("\ncenterline axial velocity (m/s)\n{:>9} {:>9} {:>17} {:>9} {:>9}\n", "z mm", "labs", "range", "ours",
+             "diff");
+  std::string csv = "z_mm,labs_mean_m_s,labs_min_m_s,labs_max_m_s,labs,ours_m_s\n";
+  c.markdown += "| centreline velocity, z (mm) | labs' mean [range] (m/s) | ours | difference |\n|---|---|---|---|\n";
+  double sum2 = 0.0, worst = 0.0;
+  int n = 0, within = 0;
+  const std::vector<double> z_stations = stations(c.labs, &Lab::velocity);
+  for (double z : z_stations) {
+    const Stats s = at(c.labs, &Lab::velocity, z);
+    const double ours = c.axial(c.field, 0.0, 0.0, z);
+    fmt::print("{:9.2f} {:9.4f} {:8.4f}..{:<8.4f} {:9.4f} {:+9.4f}\n", z, s.mean, s.low, s.high, ours, ours - s.mean);
+    csv += fmt::format("{},{},{},{},{},{}\n", z, s.mean, s.low, s.high, s.labs, ours);
+    c.markdown += fmt::format("| {:g} | {:.3f} [{:.3f}, {:.3f}] | {:.3f}{} | {:+.3f} |\n", z, s.mean, s.low, s.high,
+                              ours, s.low <= ours && ours <= s.high ? "" : " (out)", ours - s.mean);
+    if (!std::isfinite(ours)) continue;
+    sum2 += (ours - s.mean) * (ours - s.mean), worst = std::max(worst, std::abs(ours - s.mean)), ++n;
+    within += s.low <= ours && ours <= s.high;
+  }
+  fmt::print(
+      "centerline velocity: RMS difference from the labs' mean {:.4f} m/s ({:.1f} % of the throat's mean velocity "
+      "{:.4f} m/s), worst {:.4f} m/s, over {} stations; {} within the labs' range\n",
+      rms(sum2, n), 100 * rms(sum2, n) / c.throat_mean, c.throat_mean, worst, n, within);
+  c.summary["centerline"] = {{"rms_percent", 100 * rms(sum2, n) / c.throat_mean}, {"stations", n}, {"within", within}};
+  io::write_text(c.out + "/centerline_velocity.csv", csv);
+
+  // Each laboratory on its own: ours against it, and it against the others' mean (their spread).
+  fmt::print("per laboratory (RMS over its stations, % of the throat's mean velocity):\n{:>6} {:>9} {:>12} {:>18}\n",
+             "lab", "stations", "ours - lab", "lab - others' mean");
+  c.markdown += fmt::format(
+      "\nRMS difference {:.1f} % of the throat's mean velocity; {} of {} stations within the labs' range.\n\n| "
+      "laboratory | stations | ours − lab (RMS, % of the throat's mean) | lab − the others' mean "
+      "|\n|---|---|---|---|\n",
+      100 * rms(sum2, n) / c.throat_mean, within, n);
+  for (const Lab& lab : c.labs) {
+    double ours2 = 0.0, spread2 = 0.0;
+    int m = 0, k = 0;
+    for (const auto& [z, v] : lab.velocity) {
+      if (const double ours = c.axial(c.field, 0.0, 0.0, z); std::isfinite(ours)) ours2 += (ours - v) * (ours - v), ++m;
+      double others = 0.0;
+      int count = 0;
+      for (const Lab& other : c.labs)
+        for (const auto& [zz, w] : other.velocity)
+          if (&other != &lab && std::abs(zz - z) < 1e-6) others += w, ++count;
+      if (count) spread2 += (v - others / count) * (v - others / count), ++k;
+    }
+    if (lab.velocity.empty()) continue;
+    fmt::print("{:>6} {:>9} {:>11.1f}% {:>17.1f}%\n", lab.code, lab.velocity.size(),
+               100 * rms(ours2, m) / c.throat_mean, 100 * rms(spread2, k) / c.throat_mean);
+    c.markdown += fmt::format("| {} | {} | {:.1f} % | {:.1f} % |\n", lab.code, lab.velocity.size(),
+                              100 * rms(ours2, m) / c.throat_mean, 100 * rms(spread2, k) / c.throat_mean);
+    c.summary["centerline"]["labs"][lab.code] = {{"ours_rms_percent", 100 * rms(ours2, m) / c.throat_mean},
+                                                 {"spread_rms_percent", 100 * rms(spread2, k) / c.throat_mean}};
+  }
+
+  // Steadiness: the last frame against the one before.
+  if (c.series.frames.size() >= 2) {
+    const post::FluidField before = post::read_fluid_frame(c.series.frames[c.series.frames.size() - 2]);
+    double change = 0.0;
+    for (double z : z_stations) {
+      const double a = c.axial(c.field, 0.0, 0.0, z), b = c.axial(before, 0.0, 0.0, z);
+      if (std::isfinite(a) && std::isfinite(b)) change = std::max(change, std::abs(a - b));
+    }
+    fmt::print("steadiness: the centerline velocity changed by at most {:.4f} m/s from t = {:g} s to {:g} s\n", change,
+               before.time, c.field.time);
+  }
+
+  write_chart_along_z(c, "centerline_velocity", "FDA nozzle, " + re + ": centerline axial velocity", "velocity (m/s)",
+                      &Lab::velocity, {}, -100.0, 100.0, [&](double z) { return c.axial(c.field, 0.0, 0.0, z); });
+}
+
+// Wall pressure, as differences from the most downstream tap every laboratory has.
+void compare_pressure(Comparison& c) {
+  double reference = 1e300;
+  for (const Lab& lab : c.labs)
+    if (!lab.pressure.empty()) reference = std::min(reference, lab.pressure.back().first);
+  if (reference == 1e300) return fmt::print("\nwall pressure: no laboratory measured it\n");
+  std::map<std::string, double> offset;
+  for (const Lab& lab : c.labs)
+    for (const auto& [z, p] : lab.pressure)
+      if (std::abs(z - reference) < 1e-6) offset[lab.code] = p;
+  const double ours_reference = c.wall_pressure(reference);
+  fmt::print("\nwall pressure (Pa), relative to z = {:g} mm\n{:>9} {:>9} {:>17} {:>9} {:>9}\n", reference, "z mm",
+             "labs", "range", "ours", "diff");
+  std::string csv = "z_mm,labs_mean_Pa,labs_min_Pa,labs_max_Pa,labs,ours_Pa\n";
+  c.markdown += fmt::format(
+      "\n| wall pressure, z (mm) | labs' mean [range] (Pa, relative to z = {:g} mm) | ours | difference "
+      "|\n|---|---|---|---|\n",
+      reference);
+  double drop_labs = 0.0, drop_ours = 0.0;
+  int within = 0;
+  const std::vector<double> taps = stations(c.labs, &Lab::pressure);
+  for (double z : taps) {
+    const Stats s = at(c.labs, &Lab::pressure, z, offset);
+    const double ours = c.wall_pressure(z) - ours_reference;
+    fmt::print("{:9.2f} {:9.2f} {:8.2f}..{:<8.2f} {:9.2f} {:+9.2f}\n", z, s.mean, s.low, s.high, ours, ours - s.mean);
+    csv += fmt::format("{},{},{},{},{},{}\n", z, s.mean, s.low, s.high, s.labs, ours);
+    c.markdown += fmt::format("| {:g} | {:.0f} [{:.0f}, {:.0f}] | {:.0f}{} | {:+.0f} |\n", z, s.mean, s.low, s.high,
+                              ours, s.low <= ours && ours <= s.high ? "" : " (out)", ours - s.mean);
+    within += s.low <= ours && ours <= s.high;
+    if (z == taps.front()) drop_labs = s.mean, drop_ours = ours;
+  }
+  fmt::print(
+      "pressure drop from z = {:g} mm to z = {:g} mm: labs' mean {:.1f} Pa, ours {:.1f} Pa ({:+.1f} %); {} of {} taps "
+      "within the labs' range\n",
+      taps.front(), reference, drop_labs, drop_ours, 100 * (drop_ours - drop_labs) / drop_labs, within, taps.size());
+  c.markdown += fmt::format(
+      "\nPressure drop from z = {:g} to {:g} mm: labs' mean {:.0f} Pa, ours {:.0f} Pa ({:+.1f} %); {} of {} taps "
+      "within the labs' range.\n",
+      taps.front(), reference, drop_labs, drop_ours, 100 * (drop_ours - drop_labs) / drop_labs, within, taps.size());
+  c.summary["pressure"] = {
+      {"drop_labs_Pa", drop_labs}, {"drop_ours_Pa", drop_ours}, {"taps", taps.size()}, {"within", within}};
+  io::write_text(c.out + "/wall_pressure.csv", csv);
+  write_chart_along_z(c, "wall_pressure", fmt::format("FDA nozzle: wall pressure relative to z = {:g} mm", reference),
+                      "pressure (Pa)", &Lab::pressure, offset, taps.front(), reference,
+                      [&](double z) { return c.wall_pressure(z) - ours_reference; });
+}
+
+// Radial profiles of the axial velocity at the laboratories' stations: per station and laboratory
+// the RMS difference over its points inside our mesh; each station's chart.
+void compare_profiles(Comparison& c) {
+  std::set<double> z_stations;
+  for (const Lab& lab : c.labs)
+    for (const auto& [z, rows] : lab.profiles) z_stations.insert(z);
+  if (z_stations.empty()) return fmt::print("\nvelocity profiles: no laboratory measured them\n");
+  fmt::print(
+      "\naxial velocity profiles: RMS difference over each laboratory's points, % of the throat's mean velocity\n{:>9}",
+      "z mm");
+  c.markdown += "\n| axial velocity profiles, z (mm) |";
+  for (const Lab& lab : c.labs) fmt::print(" {:>7}", lab.code), c.markdown += " lab " + lab.code + " |";
+  fmt::print(" {:>7}\n", "all");
+  c.markdown += " all |\n|---|";
+  for (size_t i = 0; i <= c.labs.size(); ++i) c.markdown += "---|";
+  c.markdown += "\n";
+  std::string csv = "z_mm,lab,r_mm,lab_m_s,ours_m_s\n";
+  double all2 = 0.0;
+  int all_n = 0;
+  for (double z : z_stations) {
+    fmt::print("{:9.1f}", z);
+    c.markdown += fmt::format("| {:g} |", z);
+    double station2 = 0.0;
+    int station_n = 0;
+    std::vector<study::Series> labs;
+    for (const Lab& lab : c.labs) {
+      const auto found = lab.profiles.find(z);
+      if (found == lab.profiles.end()) {
+        fmt::print(" {:>7}", "-");
+        c.markdown += " – |";
+        continue;
+      }
+      study::Series s{.name = "lab " + lab.code, .x = {}, .y = {}, .dashed = true};
+      double sum2 = 0.0;
+      int n = 0;
+      for (const auto& [r, u] : found->second) {
+        if (std::abs(r) <= station_radius(z) + 0.5) s.x.push_back(r), s.y.push_back(u);  // not the rows past the wall
+        const double ours = c.axial_at_radius(r, z);
+        csv += fmt::format("{},{},{},{},{}\n", z, lab.code, r, u, ours);
+        if (std::isfinite(ours)) sum2 += (ours - u) * (ours - u), ++n;
+      }
+      labs.push_back(s);
+      fmt::print(" {:>6.1f}%", 100 * rms(sum2, n) / c.throat_mean);
+      c.markdown += fmt::format(" {:.1f} % |", 100 * rms(sum2, n) / c.throat_mean);
+      station2 += sum2, station_n += n;
+    }
+    fmt::print(" {:>6.1f}%\n", 100 * rms(station2, station_n) / c.throat_mean);
+    c.markdown += fmt::format(" {:.1f} % |\n", 100 * rms(station2, station_n) / c.throat_mean);
+    c.summary["profiles"]["stations"].push_back(
+        {{"z_mm", z}, {"rms_percent", 100 * rms(station2, station_n) / c.throat_mean}});
+    all2 += station2, all_n += station_n;
+    const double radius = station_radius(z);
+    study::Series ours{.name = "vesselmesh", .x = {}, .y = {}, .dashed = false};
+    for (int i = 0; i <= 160; ++i) {
+      const double r = radius * (-1.0 + 2.0 * i / 160.0);
+      ours.x.push_back(r), ours.y.push_back(c.axial_at_radius(r, z));
+    }
+    write_chart(fmt::format("{}/profile_z{:+.0f}", c.out, z),
+                fmt::format("FDA nozzle: axial velocity across the lumen at z = {:g} mm", z), "radius (mm)",
+                "axial velocity (m/s)", labs, ours);
+  }
+  fmt::print("velocity profiles: RMS difference {:.1f} % of the throat's mean velocity over {} points of {} stations\n",
+             100 * rms(all2, all_n) / c.throat_mean, all_n, z_stations.size());
+  c.summary["profiles"]["rms_percent"] = 100 * rms(all2, all_n) / c.throat_mean;
+  c.markdown += fmt::format(
+      "\nProfiles: RMS difference {:.1f} % of the throat's mean velocity over {} measured points (RMS over each "
+      "laboratory's points at each station, % of the throat's mean velocity).\n",
+      100 * rms(all2, all_n) / c.throat_mean, all_n);
+  io::write_text(c.out + "/velocity_profiles.csv", csv);
+}
+
+// The flow rate each laboratory's profile carries, over the stated one: the integral of pi |r| u
+// across the diameter (trapezoids between its points; a profile across the whole lumen gives the
+// flow through it). Ours on the same points, beside it, says what the quadrature itself misses.
+void compare_profile_flows(Comparison& c) {
+  std::set<double> z_stations;
+  for (const Lab& lab : c.labs)
+    for (const auto& [z, rows] : lab.profiles) z_stations.insert(z);
+  if (z_stations.empty()) return;
+  fmt::print("\nflow rate carried by each profile, over the stated {:g} mL/s: lab / ours on the lab's points\n{:>9}",
+             c.labs[0].flow * 1e6, "z mm");
+  c.markdown += "\n| flow rate a profile carries / the stated one, z (mm) |";
+  for (const Lab& lab : c.labs) fmt::print(" {:>11}", lab.code), c.markdown += " lab " + lab.code + " (ours) |";
+  c.markdown += "\n|---|";
+  for (size_t i = 0; i < c.labs.size(); ++i) c.markdown += "---|";
+  c.markdown += "\n";
+  for (double z : z_stations) {
+    fmt::print("\n{:9.1f}", z);
+    c.markdown += fmt::format("| {:g} |", z);
+    for (const Lab& lab : c.labs) {
+      const auto found = lab.profiles.find(z);
+      if (found == lab.profiles.end()) {
+        fmt::print(" {:>11}", "-");
+        c.markdown += " – |";
+        continue;
+      }
+      const Curve& rows = found->second;
+      double carried = 0.0, ours = 0.0, previous_ours = 0.0;
+      for (size_t i = 0; i < rows.size(); ++i) {
+        const double here = c.axial_at_radius(rows[i].first, z), u = std::isfinite(here) ? here : 0.0;
+        if (i > 0) {
+          const double weight =
+              M_PI * 1e-6 * std::abs(rows[i].first + rows[i - 1].first) / 2 * (rows[i].first - rows[i - 1].first);
+          carried += weight * (rows[i].second + rows[i - 1].second) / 2;
+          ours += weight * (u + previous_ours) / 2;
+        }
+        previous_ours = u;
+      }
+      fmt::print(" {:>5.2f}/{:<5.2f}", carried / c.labs[0].flow, ours / c.labs[0].flow);
+      c.markdown += fmt::format(" {:.2f} ({:.2f}) |", carried / c.labs[0].flow, ours / c.labs[0].flow);
+      c.summary["profiles"]["carried"][lab.code].push_back(
+          {{"z_mm", z}, {"lab", carried / c.labs[0].flow}, {"ours", ours / c.labs[0].flow}});
+    }
+    c.markdown += "\n";
+  }
+  fmt::print("\n");
+}
+
+// The wall shear stress's magnitude along z, where a laboratory measured it (each wall's row its
+// own).
+void compare_wall_shear(Comparison& c) {
+  const std::vector<double> z_stations = stations(c.labs, &Lab::wss);
+  if (z_stations.empty()) return fmt::print("\nwall shear stress: no laboratory measured it\n");
+  fmt::print(
+      "\nwall shear stress (Pa, magnitude; the labs' rows are walls: mean and range)\n{:>9} {:>9} {:>17} {:>9} {:>9}\n",
+      "z mm", "labs", "range", "ours", "diff");
+  std::string csv = "z_mm,labs_mean_Pa,labs_min_Pa,labs_max_Pa,rows,ours_Pa\n";
+  c.markdown +=
+      "\n| wall shear stress, z (mm) | labs' mean [range] (Pa; each lab's walls) | ours | difference "
+      "|\n|---|---|---|---|\n";
+  int within = 0;
+  for (double z : z_stations) {
+    const Stats s = at(c.labs, &Lab::wss, z);
+    const double ours = c.wall_shear(z);
+    fmt::print("{:9.2f} {:9.4f} {:8.4f}..{:<8.4f} {:9.4f} {:+9.4f}\n", z, s.mean, s.low, s.high, ours, ours - s.mean);
+    csv += fmt::format("{},{},{},{},{},{}\n", z, s.mean, s.low, s.high, s.labs, ours);
+    c.markdown += fmt::format("| {:g} | {:.3f} [{:.3f}, {:.3f}] | {:.3f}{} | {:+.3f} |\n", z, s.mean, s.low, s.high,
+                              ours, s.low <= ours && ours <= s.high ? "" : " (out)", ours - s.mean);
+    within += s.low <= ours && ours <= s.high;
+  }
+  fmt::print("wall shear stress: {} of {} stations within the rows' range\n", within, z_stations.size());
+  c.summary["wall_shear_stress"] = {{"stations", z_stations.size()}, {"within", within}};
+  io::write_text(c.out + "/wall_shear_stress.csv", csv);
+  write_chart_along_z(c, "wall_shear_stress", "FDA nozzle: wall shear stress (magnitude)", "wall shear stress (Pa)",
+                      &Lab::wss, {}, -100.0, 100.0, [&](double z) { return c.wall_shear(z); });
+}
+
 int run(int argc, char** argv) {
   if (argc != 4) {
     std::cerr << "usage: bench_fda_nozzle RESULT_DIR EXPERIMENT_DIR OUT_DIR\n";
     return 2;
   }
-  const std::string results = argv[1], experiment = argv[2], out = argv[3];
-  std::filesystem::create_directories(out);
-  const std::vector<Lab> labs = read_labs(experiment);
-  const post::WallSeries series = post::read_wall_series(results, "fluid");
-  if (series.length_unit != "mm") throw InputError(fmt::format("{}: the mesh is in {}, not mm", results, series.length_unit));
-  const post::FluidField field = post::read_fluid_frame(series.frames.back());
-  const post::TetLocator locator(field.mesh);
-  // The wall's points: those of the volume the wall's own frame (DIR/wall.pvd) holds, matched by
-  // their coordinates (the volume's frames hold its tetrahedra only).
-  std::vector<int> wall_points;
-  {
-    std::set<std::array<double, 3>> on_wall;
-    for (const Vec3& q : post::read_wall_frame(post::read_wall_series(results).frames.back()).mesh.points)
-      on_wall.insert({q.x(), q.y(), q.z()});
-    for (size_t v = 0; v < field.mesh.points.size(); ++v) {
-      const Vec3& q = field.mesh.points[v];
-      if (on_wall.count({q.x(), q.y(), q.z()})) wall_points.push_back(static_cast<int>(v));
-    }
-    if (wall_points.empty())
-      throw InputError(fmt::format("{}: no point of the wall's frame is a point of the volume's", results));
-  }
-  fmt::print("result: {} (t = {:g} s, {} points, {} tetrahedra); {} laboratories\n", results, field.time,
-             field.mesh.points.size(), locator.tets().size(), labs.size());
-
-  // Centerline velocity.
-  const auto axial = [&](const post::FluidField& f, double z) {
-    const post::FluidSample s = post::sample_points(f, locator, {Vec3(0.0, 0.0, z)})[0];
-    return s.inside ? s.velocity.z() : std::nan("");
-  };
-  fmt::print("\ncenterline axial velocity (m/s)\n{:>9} {:>9} {:>17} {:>9} {:>9}\n", "z mm", "labs", "range", "ours",
-             "diff");
-  std::string csv = "z_mm,labs_mean_m_s,labs_min_m_s,labs_max_m_s,labs,ours_m_s\n";
-  double sum2 = 0.0, worst = 0.0;
-  int n = 0;
-  for (double z : stations(labs, &Lab::velocity)) {
-    const Stats s = at(labs, &Lab::velocity, z);
-    const double ours = axial(field, z);
-    fmt::print("{:9.2f} {:9.4f} {:8.4f}..{:<8.4f} {:9.4f} {:+9.4f}\n", z, s.mean, s.low, s.high, ours, ours - s.mean);
-    csv += fmt::format("{},{},{},{},{},{}\n", z, s.mean, s.low, s.high, s.labs, ours);
-    if (std::isfinite(ours)) sum2 += (ours - s.mean) * (ours - s.mean), worst = std::max(worst, std::abs(ours - s.mean)), ++n;
-  }
-  fmt::print("centerline velocity: RMS difference from the labs' mean {:.4f} m/s ({:.1f} % of the throat's mean "
-             "velocity {:.4f} m/s), worst {:.4f} m/s, over {} stations\n",
-             std::sqrt(sum2 / std::max(n, 1)), 100 * std::sqrt(sum2 / std::max(n, 1)) / throat_mean, throat_mean, worst, n);
-  io::write_text(out + "/centerline_velocity.csv", csv);
-
-  // Steadiness: the last frame against the one before.
-  if (series.frames.size() >= 2) {
-    const post::FluidField before = post::read_fluid_frame(series.frames[series.frames.size() - 2]);
-    double change = 0.0;
-    for (double z : stations(labs, &Lab::velocity)) {
-      const double a = axial(field, z), b = axial(before, z);
-      if (std::isfinite(a) && std::isfinite(b)) change = std::max(change, std::abs(a - b));
-    }
-    fmt::print("steadiness: the centerline velocity changed by at most {:.4f} m/s from t = {:g} s to {:g} s\n", change,
-               before.time, field.time);
-  }
-
-  // Wall pressure, as differences from the most downstream tap every laboratory has.
-  double reference = 1e300;
-  for (const Lab& lab : labs)
-    if (!lab.pressure.empty()) reference = std::min(reference, lab.pressure.back().first);
-  std::map<std::string, double> offset;
-  for (const Lab& lab : labs)
-    for (const auto& [z, p] : lab.pressure)
-      if (std::abs(z - reference) < 1e-6) offset[lab.code] = p;
-  const double window = 0.5;  // mm
-  const double ours_reference = wall_pressure(field, wall_points, reference, window);
-  fmt::print("\nwall pressure (Pa), relative to z = {:g} mm\n{:>9} {:>9} {:>17} {:>9} {:>9}\n", reference, "z mm",
-             "labs", "range", "ours", "diff");
-  csv = "z_mm,labs_mean_Pa,labs_min_Pa,labs_max_Pa,labs,ours_Pa\n";
-  double drop_labs = 0.0, drop_ours = 0.0;
-  const std::vector<double> taps = stations(labs, &Lab::pressure);
-  for (double z : taps) {
-    const Stats s = at(labs, &Lab::pressure, z, offset);
-    const double ours = wall_pressure(field, wall_points, z, window) - ours_reference;
-    fmt::print("{:9.2f} {:9.2f} {:8.2f}..{:<8.2f} {:9.2f} {:+9.2f}\n", z, s.mean, s.low, s.high, ours, ours - s.mean);
-    csv += fmt::format("{},{},{},{},{},{}\n", z, s.mean, s.low, s.high, s.labs, ours);
-    if (z == taps.front()) drop_labs = s.mean, drop_ours = ours;
-  }
-  fmt::print("pressure drop from z = {:g} mm to z = {:g} mm: labs' mean {:.1f} Pa, ours {:.1f} Pa ({:+.1f} %)\n",
-             taps.front(), reference, drop_labs, drop_ours, 100 * (drop_ours - drop_labs) / drop_labs);
-  io::write_text(out + "/wall_pressure.csv", csv);
-
-  // Charts: the laboratories as dashed lines, ours sampled finely.
-  for (int which = 0; which < 2; ++which) {
-    study::LineChart chart;
-    chart.x_label = "z (mm), flow along +z";
-    chart.title = which == 0 ? "FDA nozzle, Re_throat = 500: centerline axial velocity"
-                             : fmt::format("FDA nozzle, Re_throat = 500: wall pressure relative to z = {:g} mm", reference);
-    chart.y_label = which == 0 ? "velocity (m/s)" : "pressure (Pa)";
-    for (const Lab& lab : labs) {
-      study::Series s{.name = "lab " + lab.code, .x = {}, .y = {}, .dashed = true};
-      for (const auto& [z, v] : which == 0 ? lab.velocity : lab.pressure) {
-        s.x.push_back(z);
-        s.y.push_back(which == 0 ? v : v - offset[lab.code]);
-      }
-      if (!s.x.empty()) chart.series.push_back(s);
-    }
-    study::Series ours{.name = "vesselmesh", .x = {}, .y = {}, .dashed = false};
-    const double z0 = which == 0 ? -100.0 : taps.front(), z1 = which == 0 ? 100.0 : reference;
-    for (int i = 0; i <= 400; ++i) {
-      const double z = z0 + (z1 - z0) * i / 400.0;
-      ours.x.push_back(z);
-      ours.y.push_back(which == 0 ? axial(field, z) : wall_pressure(field, wall_points, z, window) - ours_reference);
-    }
-    chart.series.push_back(ours);
-    study::write_svg_and_png(out + (which == 0 ? "/centerline_velocity" : "/wall_pressure"), study::svg(chart));
-  }
-  fmt::print("\nwrote {}/centerline_velocity.csv|svg|png, wall_pressure.csv|svg|png\n", out);
+  std::filesystem::create_directories(argv[3]);
+  Comparison c(argv[1], argv[2], argv[3]);
+  fmt::print(
+      "result: {} (t = {:g} s, {} points, {} tetrahedra); {} laboratories; flow {:g} mL/s, throat's mean velocity "
+      "{:.4f} m/s\n",
+      argv[1], c.field.time, c.field.mesh.points.size(), c.locator.tets().size(), c.labs.size(), c.labs[0].flow * 1e6,
+      c.throat_mean);
+  compare_centerline(c);
+  compare_pressure(c);
+  compare_profiles(c);
+  compare_profile_flows(c);
+  compare_wall_shear(c);
+  c.summary["points"] = c.field.mesh.points.size();
+  c.summary["time_s"] = c.field.time;
+  c.summary["throat_mean_velocity_m_s"] = c.throat_mean;
+  io::write_text(c.out + "/comparison.json", c.summary.dump(2) + "\n");
+  io::write_text(c.out + "/comparison.md", c.markdown);
+  fmt::print(
+      "\nwrote {}/comparison.json|md, centerline_velocity, wall_pressure, wall_shear_stress, velocity_profiles (.csv), "
+      "their charts (.svg, .png)\n",
+      c.out);
   return 0;
 }
 
@@ -267,8 +544,10 @@ int series(int argc, char** argv) {
   const std::string out = argv[5];
   std::array<double, 3> points{};
   std::array<std::vector<std::vector<double>>, 3> velocity;
+  std::array<nlohmann::json, 3> compared;
   for (int k = 0; k < 3; ++k) {
     points[k] = nlohmann::json::parse(io::read_file(level[k] + "/flow/summary.json"))["points"].get<double>();
+    compared[k] = nlohmann::json::parse(io::read_file(level[k] + "/comparison.json"));
     velocity[k] = read_csv(level[k] + "/centerline_velocity.csv");  // z, mean, min, max, labs, ours
     if (velocity[k].size() != velocity[0].size()) throw InputError(level[k] + ": other stations than the finest's");
   }
@@ -276,8 +555,13 @@ int series(int argc, char** argv) {
              points[0], points[1], points[2], std::cbrt(points[0] / points[1]), std::cbrt(points[1] / points[2]));
   fmt::print("{:>7} {:>8} {:>17} {:>8} {:>8} {:>8} {:>6} {:>9} {:>8}  {}\n", "z mm", "labs", "range", "fine", "medium",
              "coarse", "p", "extrap.", "GCI", "status");
-  std::string csv = "z_mm,labs_mean_m_s,labs_min_m_s,labs_max_m_s,fine_m_s,medium_m_s,coarse_m_s,order,extrapolated_m_s,"
-                    "gci_fine_percent\n";
+  std::string csv =
+      "z_mm,labs_mean_m_s,labs_min_m_s,labs_max_m_s,fine_m_s,medium_m_s,coarse_m_s,order,extrapolated_m_s,gci_fine_"
+      "percent\n";
+  std::string markdown = fmt::format(
+      "| centreline velocity (m/s), z (mm) | labs' mean [range] | {:.0f} points | {:.0f} | {:.0f} | order | "
+      "extrapolated | GCI (finest) |\n|---|---|---|---|---|---|---|---|\n",
+      points[2], points[1], points[0]);
   std::array<double, 3> sum2{};
   std::array<int, 3> within{};
   const size_t n = velocity[0].size();
@@ -295,15 +579,48 @@ int series(int argc, char** argv) {
                low, high, v[0], v[1], v[2], g.order, g.extrapolated, 100 * g.gci_fine, g.status);
     csv += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", row[0], mean, low, high, v[0], v[1], v[2], g.order,
                        g.extrapolated, 100 * g.gci_fine);
+    const auto cell = [&](double value) {
+      return fmt::format("{:.3f}{}", value, low <= value && value <= high ? "" : "*");
+    };
+    markdown +=
+        fmt::format("| {:g} | {:.3f} [{:.3f}, {:.3f}] | {} | {} | {} | {} | {} | {} |\n", row[0], mean, low, high,
+                    cell(v[2]), cell(v[1]), cell(v[0]), std::isfinite(g.order) ? fmt::format("{:.2f}", g.order) : "–",
+                    std::isfinite(g.extrapolated) ? fmt::format("{:.3f}", g.extrapolated) : "–",
+                    g.found ? fmt::format("{:.1f} %", 100 * g.gci_fine) : g.status);
   }
-  for (int k = 0; k < 3; ++k)
-    fmt::print("{}: RMS difference from the labs' mean {:.1f} % of the throat's mean velocity, {} of {} stations within "
-               "the labs' range\n",
-               level[k], 100 * std::sqrt(sum2[k] / n) / throat_mean, within[k], n);
+  markdown += fmt::format(
+      "\n(* outside the laboratories' range; refinement ratios in h {:.2f} and {:.2f})\n\n| level | points | "
+      "centreline RMS | stations in range | profiles' RMS | pressure taps in range | pressure drop (labs') | WSS "
+      "stations in range |\n|---|---|---|---|---|---|---|---|\n",
+      std::cbrt(points[1] / points[2]), std::cbrt(points[0] / points[1]));
+  for (int k = 2; k >= 0; --k) {
+    const nlohmann::json& j = compared[k];
+    markdown +=
+        fmt::format("| {} | {:.0f} | {:.1f} % | {} of {} | {:.1f} % | {} of {} | {:.0f} Pa ({:.0f}) | {} of {} |\n",
+                    std::array{"fine", "medium", "coarse"}[k], points[k],
+                    100 * std::sqrt(sum2[k] / n) / j["throat_mean_velocity_m_s"].get<double>(), within[k], n,
+                    j["profiles"].value("rms_percent", std::nan("")), j["pressure"].value("within", 0),
+                    j["pressure"].value("taps", 0), j["pressure"].value("drop_ours_Pa", std::nan("")),
+                    j["pressure"].value("drop_labs_Pa", std::nan("")), j["wall_shear_stress"].value("within", 0),
+                    j["wall_shear_stress"].value("stations", 0));
+  }
+  for (int k = 0; k < 3; ++k) {
+    const nlohmann::json& j = compared[k];
+    fmt::print(
+        "{}: centreline RMS difference from the labs' mean {:.1f} % of the throat's mean velocity, {} of {} stations "
+        "within the labs' range; profiles' RMS {:.1f} %; wall pressure {} of {} taps within range, drop {:.1f} Pa "
+        "(labs {:.1f}); wall shear stress {} of {} within the rows' range\n",
+        level[k], 100 * std::sqrt(sum2[k] / n) / j["throat_mean_velocity_m_s"].get<double>(), within[k], n,
+        j["profiles"].value("rms_percent", std::nan("")), j["pressure"].value("within", 0),
+        j["pressure"].value("taps", 0), j["pressure"].value("drop_ours_Pa", std::nan("")),
+        j["pressure"].value("drop_labs_Pa", std::nan("")), j["wall_shear_stress"].value("within", 0),
+        j["wall_shear_stress"].value("stations", 0));
+  }
   std::filesystem::create_directories(out);
   io::write_text(out + "/series_velocity.csv", csv);
+  io::write_text(out + "/series.md", markdown);
   study::LineChart chart;
-  chart.title = "FDA nozzle, Re_throat = 500: centerline axial velocity on three meshes";
+  chart.title = "FDA nozzle: centerline axial velocity on three meshes";
   chart.x_label = "z (mm), flow along +z";
   chart.y_label = "velocity (m/s)";
   study::Series low{.name = "labs' lowest", .x = {}, .y = {}, .dashed = true},
@@ -319,7 +636,7 @@ int series(int argc, char** argv) {
     chart.series.push_back(s);
   }
   study::write_svg_and_png(out + "/series_velocity", study::svg(chart));
-  fmt::print("wrote {}/series_velocity.csv|svg|png\n", out);
+  fmt::print("wrote {}/series.md, series_velocity.csv|svg|png\n", out);
   return 0;
 }
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Issue 8's validation on the FDA benchmark nozzle (sudden-expansion orientation, Re_throat = 500):
-# the whole pipeline from `vesselmesh synth nozzle` to the comparison with the FDA's measurements
-# (five laboratories' centerline velocity and wall pressure), figures included.
+# Issues 8 and 47: validation on the FDA benchmark nozzle (sudden-expansion orientation, Re_throat = 500,
+# or RE=2000): the whole pipeline from `vesselmesh synth nozzle` to the comparison with the FDA's measurements
+# (five laboratories' centerline velocity, wall pressure, velocity profiles and wall shear stress), figures
+# included; the flow rate is the measurements' files'.
 #   bench/fda_nozzle.sh [BUILD] [OUT] [POINTS_PER_CIRCLE] [HMAX_MM] [DT_S] [END_S]
 # Defaults: build, BUILD/fda-nozzle, 30 points around the lumen (0.42 mm in the throat), sizes at
 # most 0.7 mm, dt 5 ms to t = 0.5 s from the Stokes flow (the steady state, reached by time steps).
@@ -13,8 +14,8 @@
 # the steady jet's decay past z = 30 mm is the mesh's (three levels of the defaults' sizing, ratio 1.31
 # and 1.15 in h: 0.483, 0.542, 0.571 m/s at z = 40 mm against the labs' 0.625; JET=0.35 on the coarsest
 # walls: 0.640; docs/validation/fda_nozzle.md).
-# The measurements: ../shared/data/reference/fda_nozzle/SE_exp_0500.zip beside the checkout (or
-# $FDA_ZIP); they are read from there, never copied into the project. Set NP=K to run the solver
+# The measurements: ../shared/data/reference/fda_nozzle/SE_exp_0500.zip (RE=2000: SE_exp_2000.zip) beside the
+# checkout (or $FDA_ZIP); they are read from there, never copied into the project. Set NP=K to run the solver
 # under `mpirun -np K`. About 30 minutes on 2 cores with the defaults (490k unknowns, 16 s a step).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -24,9 +25,11 @@ ppc=${3:-30}
 hmax=${4:-0.7}
 dt=${5:-0.005}
 end=${6:-0.5}
-zip=${FDA_ZIP:-$here/../../shared/data/reference/fda_nozzle/SE_exp_0500.zip}
+re=${RE:-500}
+zip=${FDA_ZIP:-$here/../../shared/data/reference/fda_nozzle/SE_exp_$(printf %04d "$re").zip}
 if [[ ! -f "$zip" ]]; then
-  echo "fda_nozzle.sh: no measurements at $zip (set FDA_ZIP to SE_exp_0500.zip of the FDA's benchmark data)" >&2
+  echo "fda_nozzle.sh: no measurements at $zip (set FDA_ZIP to SE_exp_$(printf %04d "$re").zip of the FDA's" \
+    "benchmark data)" >&2
   exit 2
 fi
 vm="$build/vesselmesh"
@@ -34,6 +37,11 @@ compare="$build/bench/bench_fda_nozzle"
 mkdir -p "$out"
 rm -rf "$out/experiment"
 unzip -q -o "$zip" -d "$out"
+flow=$(awk '$1 == "fluid-volumetric-flow-rate" { printf "%.6g", $2 * 1e6; exit }' "$out"/experiment/PIV_*.txt)
+if [[ -z "$flow" ]]; then
+  echo "fda_nozzle.sh: $zip: no fluid-volumetric-flow-rate in experiment/PIV_*.txt" >&2
+  exit 2
+fi
 # shellcheck source=bench/nozzle_case.sh
 source "$here/nozzle_case.sh"
 refine=()
@@ -49,7 +57,7 @@ end = $end
 save_every = $(python3 -c "print(max(1, round($end / $dt / 5)))")
 initial = \"stokes\"           # the developed pipe flow from the start; the jet grows in time"
 fi
-write_nozzle_case "$out/case.toml" "$time_section"
+write_nozzle_case "$out/case.toml" "$time_section" "$flow"
 run=("$vm" simulate "$out/case.toml" -o "$out/flow")
 if [[ -n "${NP:-}" ]]; then run=(mpirun --allow-run-as-root -np "$NP" "${run[@]}"); fi
 if [[ -x /usr/bin/time ]]; then run=(/usr/bin/time -f "simulate: %e s wall, %M KB peak" "${run[@]}"); fi

@@ -1,9 +1,9 @@
 # Sourced by the FDA nozzle benchmarks: the nozzle (sudden expansion, inlet pipe 30 mm: the first
 # pressure tap is at z = -90.32 mm, the inlet at -92.685 mm; outlet pipe 100 mm: the last velocity
 # station at +80 mm), its surface sized by the distance to the axis, TetGen inside, and its flow case
-# at Re_throat = 500 (fluid and flow rate of the FDA's data files).
+# (fluid of the FDA's data files; flow rate theirs at Re_throat = 500 unless given).
 #   nozzle_mesh VM DIR POINTS_PER_CIRCLE HMAX_MM [VOLUME_OPTIONS...]  -> DIR/volume.msh
-#   write_nozzle_case FILE TIME_SECTION  (the mesh: volume.msh beside FILE)
+#   write_nozzle_case FILE TIME_SECTION [FLOW_ML_S]  (the mesh: volume.msh beside FILE)
 nozzle_mesh() {
   local vm=$1 dir=$2 ppc=$3 hmax=$4
   shift 4
@@ -16,7 +16,7 @@ nozzle_mesh() {
 
 write_nozzle_case() {
   cat >"$1" <<TOML
-# FDA nozzle, sudden expansion, Re_throat = 500 (fluid and flow rate of the FDA's data files)
+# FDA nozzle, sudden expansion (fluid and flow rate of the FDA's data files)
 mesh = "volume.msh"
 length_unit = "mm"
 [fluid]
@@ -27,7 +27,7 @@ $2
 tag = "inlet"
 type = "velocity"
 profile = "parabolic"
-flow = 5.20624               # mL/s
+flow = ${3:-5.20624}               # mL/s
 [[boundary]]
 tag = "outlet"
 type = "traction"
