@@ -68,6 +68,10 @@ std::vector<Lab> read_labs(const std::string& folder) {
     const std::string stem = file.stem().string();
     lab.code = stem.substr(stem.rfind('_') + 1);
     const io::ConformanceFile data = io::read_conformance(file.string());
+    if (data.sections.empty()) {  // another format (the Re 2000 case's LDV file, one line of tabs)
+      fmt::print("{}: no plot- section (not a conformance file), left out\n", file.filename().string());
+      continue;
+    }
     lab.flow = data.flow;
     for (const io::ConformanceSection& s : data.sections) {
       Curve rows;  // positions in mm, increasing
