@@ -58,6 +58,8 @@ struct Lab {
 // The laboratories' files of a folder (*.txt, each lab's code the last word of its name); all must
 // give the same flow rate.
 std::vector<Lab> read_labs(const std::string& folder) {
+  if (!std::filesystem::is_directory(folder))
+    throw InputError(fmt::format("{}: no such folder (the measurements' experiment/ folder, unzipped)", folder));
   std::vector<std::filesystem::path> files;
   for (const auto& entry : std::filesystem::directory_iterator(folder))
     if (entry.path().extension() == ".txt") files.push_back(entry.path());
@@ -348,8 +350,44 @@ void compare_pressure(Comparison& c) {
                       [&](double z) { return c.wall_pressure(z) - ours_reference; });
 }
 
+// Carried[z][lab]: the flow rate a laboratory's profile at station z carries and ours on the same
+// points, each over the stated flow rate.
+using Carried = std::map<double, std::map<std::string, std::pair<double, double>>>;
+
+// The flow rate each laboratory's profile carries, over the stated one: the integral of pi |r| u
+// across the diameter (trapezoids between its points; a profile across the whole lumen gives the
+// flow through it). Ours on the same points, beside it, says what the quadrature itself misses.
+void report_profile_flows(Comparison& c, const Carried& carried) {
+  fmt::print("\nflow rate carried by each profile, over the stated {:g} mL/s: lab / ours on the lab's points\n{:>9}",
+             c.labs[0].flow * 1e6, "z mm");
+  c.markdown += "\n| flow rate a profile carries / the stated one, z (mm) |";
+  for (const Lab& lab : c.labs) fmt::print(" {:>11}", lab.code), c.markdown += " lab " + lab.code + " (ours) |";
+  c.markdown += "\n|---|";
+  for (size_t i = 0; i < c.labs.size(); ++i) c.markdown += "---|";
+  c.markdown += "\n";
+  for (const auto& [z, by_lab] : carried) {
+    fmt::print("\n{:9.1f}", z);
+    c.markdown += fmt::format("| {:g} |", z);
+    for (const Lab& lab : c.labs) {
+      const auto found = by_lab.find(lab.code);
+      if (found == by_lab.end()) {
+        fmt::print(" {:>11}", "-");
+        c.markdown += " – |";
+        continue;
+      }
+      const auto [theirs, ours] = found->second;
+      fmt::print(" {:>5.2f}/{:<5.2f}", theirs, ours);
+      c.markdown += fmt::format(" {:.2f} ({:.2f}) |", theirs, ours);
+      c.summary["profiles"]["carried"][lab.code].push_back({{"z_mm", z}, {"lab", theirs}, {"ours", ours}});
+    }
+    c.markdown += "\n";
+  }
+  fmt::print("\n");
+}
+
 // Radial profiles of the axial velocity at the laboratories' stations: per station and laboratory
-// the RMS difference over its points inside our mesh; each station's chart.
+// the RMS difference over its points inside our mesh, and the flow rate the profile carries
+// (report_profile_flows); each station's chart.
 void compare_profiles(Comparison& c) {
   std::set<double> z_stations;
   for (const Lab& lab : c.labs)
@@ -367,6 +405,7 @@ void compare_profiles(Comparison& c) {
   std::string csv = "z_mm,lab,r_mm,lab_m_s,ours_m_s\n";
   double all2 = 0.0;
   int all_n = 0;
+  Carried carried;
   for (double z : z_stations) {
     fmt::print("{:9.1f}", z);
     c.markdown += fmt::format("| {:g} |", z);
@@ -381,14 +420,22 @@ void compare_profiles(Comparison& c) {
         continue;
       }
       study::Series s{.name = "lab " + lab.code, .x = {}, .y = {}, .dashed = true};
-      double sum2 = 0.0;
+      double sum2 = 0.0, lab_flow = 0.0, our_flow = 0.0, previous = 0.0;
       int n = 0;
-      for (const auto& [r, u] : found->second) {
+      const Curve& rows = found->second;
+      for (size_t i = 0; i < rows.size(); ++i) {
+        const auto [r, u] = rows[i];
         if (std::abs(r) <= station_radius(z) + 0.5) s.x.push_back(r), s.y.push_back(u);  // not the rows past the wall
-        const double ours = c.axial_at_radius(r, z);
+        const double ours = c.axial_at_radius(r, z), inside = std::isfinite(ours) ? ours : 0.0;
         csv += fmt::format("{},{},{},{},{}\n", z, lab.code, r, u, ours);
         if (std::isfinite(ours)) sum2 += (ours - u) * (ours - u), ++n;
+        if (i > 0) {  // pi |r| dr at the middle of the interval, r in mm -> m^2
+          const double weight = M_PI * 1e-6 * std::abs(r + rows[i - 1].first) / 2 * (r - rows[i - 1].first);
+          lab_flow += weight * (u + rows[i - 1].second) / 2, our_flow += weight * (inside + previous) / 2;
+        }
+        previous = inside;
       }
+      carried[z][lab.code] = {lab_flow / c.labs[0].flow, our_flow / c.labs[0].flow};
       labs.push_back(s);
       fmt::print(" {:>6.1f}%", 100 * rms(sum2, n) / c.throat_mean);
       c.markdown += fmt::format(" {:.1f} % |", 100 * rms(sum2, n) / c.throat_mean);
@@ -417,53 +464,7 @@ void compare_profiles(Comparison& c) {
       "laboratory's points at each station, % of the throat's mean velocity).\n",
       100 * rms(all2, all_n) / c.throat_mean, all_n);
   io::write_text(c.out + "/velocity_profiles.csv", csv);
-}
-
-// The flow rate each laboratory's profile carries, over the stated one: the integral of pi |r| u
-// across the diameter (trapezoids between its points; a profile across the whole lumen gives the
-// flow through it). Ours on the same points, beside it, says what the quadrature itself misses.
-void compare_profile_flows(Comparison& c) {
-  std::set<double> z_stations;
-  for (const Lab& lab : c.labs)
-    for (const auto& [z, rows] : lab.profiles) z_stations.insert(z);
-  if (z_stations.empty()) return;
-  fmt::print("\nflow rate carried by each profile, over the stated {:g} mL/s: lab / ours on the lab's points\n{:>9}",
-             c.labs[0].flow * 1e6, "z mm");
-  c.markdown += "\n| flow rate a profile carries / the stated one, z (mm) |";
-  for (const Lab& lab : c.labs) fmt::print(" {:>11}", lab.code), c.markdown += " lab " + lab.code + " (ours) |";
-  c.markdown += "\n|---|";
-  for (size_t i = 0; i < c.labs.size(); ++i) c.markdown += "---|";
-  c.markdown += "\n";
-  for (double z : z_stations) {
-    fmt::print("\n{:9.1f}", z);
-    c.markdown += fmt::format("| {:g} |", z);
-    for (const Lab& lab : c.labs) {
-      const auto found = lab.profiles.find(z);
-      if (found == lab.profiles.end()) {
-        fmt::print(" {:>11}", "-");
-        c.markdown += " – |";
-        continue;
-      }
-      const Curve& rows = found->second;
-      double carried = 0.0, ours = 0.0, previous_ours = 0.0;
-      for (size_t i = 0; i < rows.size(); ++i) {
-        const double here = c.axial_at_radius(rows[i].first, z), u = std::isfinite(here) ? here : 0.0;
-        if (i > 0) {
-          const double weight =
-              M_PI * 1e-6 * std::abs(rows[i].first + rows[i - 1].first) / 2 * (rows[i].first - rows[i - 1].first);
-          carried += weight * (rows[i].second + rows[i - 1].second) / 2;
-          ours += weight * (u + previous_ours) / 2;
-        }
-        previous_ours = u;
-      }
-      fmt::print(" {:>5.2f}/{:<5.2f}", carried / c.labs[0].flow, ours / c.labs[0].flow);
-      c.markdown += fmt::format(" {:.2f} ({:.2f}) |", carried / c.labs[0].flow, ours / c.labs[0].flow);
-      c.summary["profiles"]["carried"][lab.code].push_back(
-          {{"z_mm", z}, {"lab", carried / c.labs[0].flow}, {"ours", ours / c.labs[0].flow}});
-    }
-    c.markdown += "\n";
-  }
-  fmt::print("\n");
+  report_profile_flows(c, carried);
 }
 
 // The wall shear stress's magnitude along z, where a laboratory measured it (each wall's row its
@@ -500,8 +501,8 @@ int run(int argc, char** argv) {
     std::cerr << "usage: bench_fda_nozzle RESULT_DIR EXPERIMENT_DIR OUT_DIR\n";
     return 2;
   }
-  std::filesystem::create_directories(argv[3]);
-  Comparison c(argv[1], argv[2], argv[3]);
+  Comparison c(argv[1], argv[2], argv[3]);  // the inputs read before anything is written
+  std::filesystem::create_directories(c.out);
   fmt::print(
       "result: {} (t = {:g} s, {} points, {} tetrahedra); {} laboratories; flow {:g} mL/s, throat's mean velocity "
       "{:.4f} m/s\n",
@@ -510,7 +511,6 @@ int run(int argc, char** argv) {
   compare_centerline(c);
   compare_pressure(c);
   compare_profiles(c);
-  compare_profile_flows(c);
   compare_wall_shear(c);
   c.summary["points"] = c.field.mesh.points.size();
   c.summary["time_s"] = c.field.time;
@@ -650,6 +650,9 @@ int main(int argc, char** argv) {
   try {
     if (argc > 1 && std::string(argv[1]) == "--series") return series(argc, argv);
     return run(argc, argv);
+  } catch (const InputError& e) {  // bad input: what is wrong and where, exit 2 as the CLI's
+    std::cerr << "bench_fda_nozzle: " << e.what() << "\n";
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << "bench_fda_nozzle: " << e.what() << "\n";
     return 1;
