@@ -1,6 +1,7 @@
 #include "test_support.h"
 
 #include "io/atomic_file.h"
+#include "mesh/error.h"
 #include "study/picture.h"
 #include "study/view3d.h"
 
@@ -58,6 +59,17 @@ std::string test_name(const std::string& text) {
 void write_bytes(const std::string& path, const std::string& bytes) {
   std::ofstream out(path, std::ios::binary);
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+std::string input_error(const std::string& path, const std::string& text,
+                        const std::function<void(const std::string&)>& read) {
+  write_bytes(path, text);
+  try {
+    read(path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
 }
 
 TriMesh tetrahedron(const Vec3& offset, double size) {

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -44,6 +45,11 @@ std::string test_name(const std::string& text);
 
 // Writes bytes to a file.
 void write_bytes(const std::string& path, const std::string& bytes);
+
+// The message of the InputError `read` throws on a file holding `text` (written at `path` first), or
+// "no error" when it throws none.
+std::string input_error(const std::string& path, const std::string& text,
+                        const std::function<void(const std::string&)>& read);
 
 // The volume a closed, outward triangle surface encloses (divergence theorem).
 double enclosed_volume(const std::vector<Vec3>& points, const std::vector<Triangle>& faces);

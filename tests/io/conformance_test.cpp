@@ -54,14 +54,8 @@ TEST(Conformance, ReadsTheHeadersFluidAndEveryPlotSection) {
 // short, a file that is not there; another format gives no sections.
 TEST(Conformance, BadFilesSayWhereAndWhat) {
   test::TemporaryFolder folder;
-  const auto error = [&](const std::string& text) -> std::string {
-    test::write_bytes(folder.path("bad.txt"), text);
-    try {
-      read_conformance(folder.path("bad.txt"));
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "no error";
+  const auto error = [&](const std::string& text) {
+    return test::input_error(folder.path("bad.txt"), text, [](const std::string& f) { read_conformance(f); });
   };
   EXPECT_NE(error("plot-z-distribution-pressure\n2\n0.0 1.0\n0.1 x\n")
                 .find("bad.txt:4: row 2 of section "

@@ -183,14 +183,8 @@ $EndElements
 // A broken file: an InputError naming the file and the line.
 TEST(MshStream, BrokenFilesNameTheLine) {
   test::TemporaryFolder tmp;
-  const auto message = [&](const std::string& text) -> std::string {
-    test::write_bytes(tmp.path("b.msh"), text);
-    try {
-      read_msh41_volume(tmp.path("b.msh"));
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "no error";
+  const auto message = [&](const std::string& text) {
+    return test::input_error(tmp.path("b.msh"), text, [](const std::string& f) { read_msh41_volume(f); });
   };
   const std::string head = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
   EXPECT_NE(message(head + "$Nodes\n1 1 1 1\n3 1 0 1\n1\n0 0 zero\n").find("b.msh:8: MSH: expected a node's coordinate"),
