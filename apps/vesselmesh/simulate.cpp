@@ -9,6 +9,9 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <limits>
+
 
 namespace vesselmesh::cli {
 namespace {
@@ -16,6 +19,7 @@ namespace {
 struct Options {
   std::string case_file, output, petsc_options, mesh;
   int time_step_divisor = 1;
+  double end = std::numeric_limits<double>::quiet_NaN();  // s; NaN: the case's
   bool restart = false;
   CommonOptions common;
 };
@@ -26,6 +30,7 @@ int run(const Options& options, bool first) {
   flow::FlowCase fc = flow::read_case(options.case_file);
   if (!options.mesh.empty()) fc.mesh = options.mesh;
   if (options.time_step_divisor > 1) flow::divide_time_step(fc, options.time_step_divisor);
+  if (!std::isnan(options.end)) flow::set_end(fc, options.end);
   const flow::SimulationSummary s =
       flow::simulate(fc, options.output, options.petsc_options, reporter, options.restart);
   if (s.status == "stopped") return 128 + s.signal;
@@ -93,11 +98,14 @@ Command add_simulate_command(CLI::App& parent) {
                   "Run the case at its time step divided by K, saving at the same times (save_every, checkpoint_every "
                   "and fluid_every times K): a time-step convergence check")
       ->check(CLI::PositiveNumber);
+  app->add_option("--end", o->end,
+                  "Run to this time (s) instead of the case's [time] end; with --restart, a finished run goes on to "
+                  "it (e.g. one period more, to see how periodic the flow has become)");
   app->add_option("--petsc-options", o->petsc_options,
                   "PETSc options applied after the case's [solver] petsc_options, e.g. \"-ksp_monitor\"");
   app->add_flag("--restart", o->restart,
-               "Go on from DIR/checkpoint.bin (the same mesh and time step; a later [time] end extends the run), as "
-               "if the run had not stopped");
+               "Go on from DIR/checkpoint.bin (the same mesh and time step; a later [time] end extends the run, its "
+               "hemodynamic indices then over the new last period), as if the run had not stopped");
   add_common_options(*app, o->common);
   return {app, [o] {
             const bool first = parallel::process_rank() == 0;  // under mpirun, the first process speaks

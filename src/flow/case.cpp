@@ -322,6 +322,12 @@ void divide_time_step(FlowCase& c, int divisor) {
   c.fluid_every *= divisor;
 }
 
+void set_end(FlowCase& c, double end) {
+  if (!(end > 0.0)) throw OptionError(fmt::format("the run's end must be a positive time in s (found {:g})", end));
+  if (c.steady) throw OptionError(fmt::format("{}: a steady case has no end time to set", c.path));
+  c.end = end;
+}
+
 void check_tags(const FlowCase& flow_case, const std::vector<std::string>& mesh_tags) {
   const std::set<std::string> in_mesh(mesh_tags.begin(), mesh_tags.end());
   std::set<std::string> in_case;

@@ -149,6 +149,10 @@ double landing_time_step(double dt, double time, double end);
 // convergence check (the study's); a CFL target divided too (steps chosen by it then as many times
 // shorter). OptionError for a divisor < 1 or a steady case.
 void divide_time_step(FlowCase& c, int divisor);
+// The case run to `end` (s) instead of its [time] end: with a restart, a finished run extended (its
+// hemodynamic indices then over the new last period); the study's start-up check. OptionError for
+// an end that is not positive or a steady case.
+void set_end(FlowCase& c, double end);
 
 // Checks the case's tags against the mesh's: a tag of the case absent from the mesh, or a tag
 // of the mesh without a condition, is an InputError listing both sets.

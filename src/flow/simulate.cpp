@@ -742,10 +742,8 @@ void Run::restore_checkpoint() {
     c.flow = read_checkpoint_pieces(checkpoint_path_, c, wanted, mesh_points_);
   }
   if (parallel::any_process(writer_ && c.fingerprint != fingerprint_))
-    throw InputError(fmt::format(
-        "{}: the checkpoint is of another mesh or time step than {}'s; run the case without "
-        "--restart (or into another folder)",
-        checkpoint_path_, fc_.path));
+    throw InputError(fmt::format("{}: the checkpoint is of another mesh or time step than {}'s; run the case without "
+                                 "--restart (or into another folder)", checkpoint_path_, fc_.path));
   ns_->restore(c.flow);
   first_step_ = c.flow.steps;
   summary_.steps = c.flow.steps;
@@ -755,10 +753,20 @@ void Run::restore_checkpoint() {
   end_texts_ = end_logs(log_, end_tags_);
   fluid_files_ = c.fluid_files;
   wall_files_ = c.wall_files;
-  indices_.restore(indices_at(c.indices, c.index_points, wall_.mesh_point, checkpoint_path_));
+  // A run extended (its case's end later): its indices over the new last period where they can be.
+  const post::WssIndexAccumulator::State sums =
+      indices_at(c.indices, c.index_points, wall_.mesh_point, checkpoint_path_);
+  const auto moved =
+      post::window_sums(sums, window_start_, c.flow.time, c.flow.time_step > 0.0 ? c.flow.time_step : fc_.dt);
+  if (!moved)
+    reporter_.warning(fmt::format(
+        "{}: the hemodynamic indices will cover t = {:g} to {:g} s, not the last period ({:g} to {:g} s): the run that "
+        "wrote the checkpoint began them at {:g} s, and its samples from {:g} to {:g} s are not kept apart; for the "
+        "last period, run the case again without --restart",
+        checkpoint_path_, sums.start, fc_.end, window_start_, fc_.end, sums.start, window_start_, c.flow.time));
+  indices_.restore(moved ? *moved : sums);
   write_series();  // the folder as it was at the checkpoint (later saves are written again)
-  reporter_.info(fmt::format("restart from {}: step {}, t = {:g} s", checkpoint_path_, c.flow.steps,
-                             c.flow.time));
+  reporter_.info(fmt::format("restart from {}: step {}, t = {:g} s", checkpoint_path_, c.flow.steps, c.flow.time));
 }
 
 // The run's end (completed or stopped): its times, every process's memory, the summary.

@@ -71,4 +71,15 @@ void write_indices(const std::string& path, const TriMesh& wall, const WssIndice
                  Field::scalar("rrt", indices.rrt), Field::scalar("twssg", indices.twssg)});
 }
 
+std::optional<WssIndexAccumulator::State> window_sums(const WssIndexAccumulator::State& saved, double window_start,
+                                                      double time, double step) {
+  const double half = 0.5 * step;
+  if (saved.samples == 0 || saved.start >= window_start - half) return saved;
+  if (time < window_start - half) return WssIndexAccumulator::State{};
+  if (time > window_start + half) return std::nullopt;
+  const size_t n = saved.last.size();
+  return WssIndexAccumulator::State{1, saved.last_time, saved.last_time, saved.last, std::vector<Vec3>(n, Vec3::Zero()),
+                                    std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
+}
+
 }  // namespace vesselmesh::post

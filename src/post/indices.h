@@ -12,6 +12,7 @@
 
 #include "mesh/trimesh.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,14 @@ class WssIndexAccumulator {
   std::vector<Vec3> last_, integral_;
   std::vector<double> magnitude_integral_, change_;
 };
+
+// A checkpoint's sums `saved` (at `time`, its step `step` long) for a window that starts at
+// `window_start` (a run extended on restart: its last period moved on): kept where they began in
+// it; none where it starts after `time` (its samples yet to come); begun again from their last
+// sample where it starts there. Where it began between their start and `time` the samples from
+// then on are inside the sums, which cannot be cut: nullopt.
+std::optional<WssIndexAccumulator::State> window_sums(const WssIndexAccumulator::State& saved, double window_start,
+                                                      double time, double step);
 
 // The indices as VTK PolyData on the wall, point data tawss (Pa), osi, rrt (1/Pa), twssg (Pa/s),
 // written atomically.

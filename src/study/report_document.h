@@ -13,7 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -90,23 +92,51 @@ struct Ranked {
   std::string uncertainty;   // as a table cell
   std::map<std::string, double> outresolved;  // per compared mesh: how many times finer the reference is there
   bool whole_wall = false;   // a whole-wall measure (study/wall_difference.h)
-  double time_band = NAN;    // the reference's temporal error in the same percent (NaN: not measured)
+  // The reference's temporal error in the same percent, its two parts (NaN: not measured; TemporalError).
+  double time_band = NAN, start_band = NAN;
+  // Their sum, which a difference must exceed to be called real (NaN: neither measured).
+  double temporal_band() const {
+    return std::isfinite(time_band) || std::isfinite(start_band)
+               ? (std::isfinite(time_band) ? time_band : 0.0) + (std::isfinite(start_band) ? start_band : 0.0)
+               : NAN;
+  }
 };
+
+// The reference's temporal error at one quantity, from the checks that run the series' first level
+// again: the time step's (4/3 of its change at dt / 2) and the start-up's (its change over one more
+// period: what is left of the start from rest when a period takes the flow at least halfway to its
+// periodic state; on the anastomosis study's level 1 one period took the WSS's RMS change from 4.8e-2
+// to 2.9e-6), in the quantity's unit; NaN where not run.
+struct TemporalError {
+  double time_step = NAN, start_up = NAN;
+  // The parts over `scale`, in percent, into `rank`; " (time step: x %, start-up: y %)" for the
+  // parts measured added to its uncertainty's cell.
+  void rank_into(Ranked& rank, double scale) const;
+  // Their sum in the quantity's unit (NaN: neither measured).
+  double total() const;
+};
+// At the quantity `value` gives of a run (its ring's minimum, its point's WSS).
+TemporalError temporal_error(const StudyResult& result, const std::function<double(const MeshRun&)>& value);
+// The quantities whose start-up's share exceeds the reference's spatial uncertainty (both known), each
+// "QUANTITY (start-up x % against y %)": over the span they cover the flows still carry their start.
+std::vector<std::string> unsettled_quantities(const std::vector<Ranked>& ranked);
 
 // How many times finer the reference is than mesh m at place k (the least of the three measures'
 // mean ratios over the place; NaN when not measured).
 double outresolution(const MeshRun& m, const MeshRun& reference, size_t k);
 // The verdict where the reference may not out-resolve the mesh: "cannot tell" with the reason, or `verdict`.
 std::string resolved_verdict(const std::string& verdict, double ratio);
-// A verdict "larger" than the spatial band that the time step's error could explain: said so.
+// A verdict "larger" than the spatial band that the temporal error could explain: said so.
 std::string timed_verdict(const std::string& verdict, double difference, double time_error);
-// The level run at half the time step and the level it repeats (the series' first), or nulls.
-std::pair<const MeshRun*, const MeshRun*> time_pair(const StudyResult& result);
+// The check (the level run at half the time step, or one period more) and the level it repeats (the
+// series' first), or nulls.
+std::pair<const MeshRun*, const MeshRun*> check_pair(const StudyResult& result, const std::optional<MeshRun>& check);
 // "1.50x", or "n/a".
 std::string times(double ratio);
 
 // The sections; each returns what it adds to study.json.
 Json time_step_section(Document& doc, const StudyConfig& config, const StudyResult& result, double dt);
+Json start_up_section(Document& doc, const StudyConfig& config, const StudyResult& result);
 Json whole_wall_section(Document& doc, const StudyResult& result, const std::vector<const MeshRun*>& grids,
                         std::vector<Ranked>& ranked);
 Json resolution_section(Document& doc, const StudyResult& result);

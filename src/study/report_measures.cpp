@@ -5,6 +5,7 @@
 #include "study/wall_difference.h"
 
 #include <algorithm>
+#include <array>
 
 namespace vesselmesh::study::report {
 
@@ -35,78 +36,142 @@ std::string resolved_verdict(const std::string& verdict, double ratio) {
 }
 
 
-// A verdict "larger" than the spatial band that the time step's error could explain: said so.
+// A verdict "larger" than the spatial band that the temporal error could explain: said so.
 std::string timed_verdict(const std::string& verdict, double difference, double time_error) {
   if (verdict == "larger" && std::isfinite(time_error) && std::abs(difference) <= time_error)
-    return "within the time step's error";
+    return "within the temporal error (time step, start-up)";
   return verdict;
 }
 
-// The level run at half the time step and the level it repeats (the series' first), or nulls.
-std::pair<const MeshRun*, const MeshRun*> time_pair(const StudyResult& result) {
-  if (!result.half_step) return {nullptr, nullptr};
+std::pair<const MeshRun*, const MeshRun*> check_pair(const StudyResult& result, const std::optional<MeshRun>& check) {
+  if (!check) return {nullptr, nullptr};
   for (const MeshRun& m : result.meshes)
-    if (m.series) return {&*result.half_step, &m};
+    if (m.series) return {&*check, &m};
   return {nullptr, nullptr};
 }
 
-// The whole-wall temporal error of the reference in a field's L2 or P95 measure, over its mean.
-static WallDifference time_step_wall(const StudyResult& result, const std::string& key) {
-  const auto [half, level] = time_pair(result);
-  const MeshRun& reference = result.meshes[result.reference];
-  if (!half || !reference.wall.count(key)) return {NAN, NAN, NAN};
-  const bool wss = key == "wss";
-  const std::vector<Vec3>* hv = wss ? &half->wss_on_reference : nullptr;
-  const std::vector<double>* hs = key == "tawss" ? &half->tawss_on_reference : &half->osi_on_reference;
-  const std::vector<double>* ls = key == "tawss" ? &level->tawss_on_reference : &level->osi_on_reference;
-  if (wss ? hv->empty() : hs->empty()) return {NAN, NAN, NAN};
-  const WallDifference d = wss ? wall_difference(result.reference_area, *hv, level->wss_on_reference)
-                               : wall_difference(result.reference_index_area, *hs, *ls);
-  const double mean = reference.wall.at(key).mean;
-  return {kTimeErrorFactor * d.l2 * d.mean / mean, kTimeErrorFactor * d.p95 * d.mean / mean, mean};
+void TemporalError::rank_into(Ranked& rank, double scale) const {
+  rank.time_band = 100.0 * time_step / scale;
+  rank.start_band = 100.0 * start_up / scale;
+  std::vector<std::string> parts;
+  if (std::isfinite(rank.time_band)) parts.push_back(fmt::format("time step: {:.2f} %", rank.time_band));
+  if (std::isfinite(rank.start_band)) parts.push_back(fmt::format("start-up: {:.2f} %", rank.start_band));
+  if (!parts.empty()) rank.uncertainty += fmt::format(" ({})", fmt::join(parts, ", "));
 }
 
-// The time step's share of the reference's error: the series' first level at dt and at dt / 2 at every
-// ring minimum and point, and over the whole wall; returns the same for study.json.
-Json time_step_section(Document& doc, const StudyConfig& config, const StudyResult& result, double dt) {
+double TemporalError::total() const {
+  if (!std::isfinite(time_step) && !std::isfinite(start_up)) return NAN;
+  return (std::isfinite(time_step) ? time_step : 0.0) + (std::isfinite(start_up) ? start_up : 0.0);
+}
+
+TemporalError temporal_error(const StudyResult& result, const std::function<double(const MeshRun&)>& value) {
+  TemporalError e;
+  if (const auto [half, level] = check_pair(result, result.half_step); half)
+    e.time_step = kTimeErrorFactor * std::abs(value(*half) - value(*level));
+  if (const auto [next, level] = check_pair(result, result.next_period); next)
+    e.start_up = std::abs(value(*next) - value(*level));
+  return e;
+}
+
+std::vector<std::string> unsettled_quantities(const std::vector<Ranked>& ranked) {
+  std::vector<std::string> out;
+  for (const Ranked& q : ranked)
+    if (std::isfinite(q.start_band) && std::isfinite(q.band) && q.start_band > q.band)
+      out.push_back(fmt::format("{} (start-up {:.2f} % against {:.2f} %)", q.quantity, q.start_band, q.band));
+  return out;
+}
+
+// The whole-wall change of a check (times `factor`) in a field's L2 or P95 measure, over the
+// reference's mean.
+static WallDifference check_wall(const StudyResult& result, const std::optional<MeshRun>& check,
+                                 const std::string& key, double factor) {
+  const auto [run, level] = check_pair(result, check);
+  const MeshRun& reference = result.meshes[result.reference];
+  if (!run || !reference.wall.count(key)) return {NAN, NAN, NAN};
+  const bool wss = key == "wss";
+  const std::vector<double>* hs = key == "tawss" ? &run->tawss_on_reference : &run->osi_on_reference;
+  const std::vector<double>* ls = key == "tawss" ? &level->tawss_on_reference : &level->osi_on_reference;
+  if (wss ? run->wss_on_reference.empty() : hs->empty()) return {NAN, NAN, NAN};
+  const WallDifference d = wss ? wall_difference(result.reference_area, run->wss_on_reference, level->wss_on_reference)
+                               : wall_difference(result.reference_index_area, *hs, *ls);
+  const double mean = reference.wall.at(key).mean;
+  return {factor * d.l2 * d.mean / mean, factor * d.p95 * d.mean / mean, mean};
+}
+
+// A check's share of the reference's error: the series' first level and the check at every ring
+// minimum and point, and over the whole wall; returns the same for study.json. `factor` turns the
+// change into the error; `header` names the table's columns (the level's value, the check's, the change,
+// the error), `keys` study.json's (the level's value, the check's, the error).
+static Json check_section(Document& doc, const StudyConfig& config, const StudyResult& result,
+                          const std::optional<MeshRun>& check, double factor, const std::string& heading,
+                          const std::string& paragraph, const std::array<std::string, 4>& header,
+                          const std::array<std::string, 3>& keys) {
   Json out = Json::array();
-  const auto [half, level] = time_pair(result);
-  if (!half) return out;
-  doc.heading("The time step's share");
+  const auto [run, level] = check_pair(result, check);
+  if (!run) return out;
+  doc.heading(heading);
   std::vector<std::vector<std::string>> rows;
-  const auto add = [&](const std::string& quantity, double at_dt, double at_half, const std::string& unit) {
-    const double error = kTimeErrorFactor * std::abs(at_dt - at_half);
-    rows.push_back({quantity, number(at_dt), number(at_half), number(at_dt - at_half, 3), number(error, 3), unit});
-    out.push_back({{"quantity", quantity}, {"at_dt", at_dt}, {"at_half_dt", at_half}, {"time_step_error", error},
-                   {"unit", unit}});
+  const auto add = [&](const std::string& quantity, double at_level, double at_check, const std::string& unit) {
+    const double error = factor * std::abs(at_level - at_check);
+    rows.push_back({quantity, number(at_level), number(at_check), number(at_level - at_check, 3), number(error, 3),
+                    unit});
+    out.push_back({{"quantity", quantity}, {keys[0], at_level}, {keys[1], at_check}, {keys[2], error}, {"unit", unit}});
   };
   for (size_t r = 0; r < result.rings.size(); ++r) {
     const post::Ring& a = level->rings[r];
-    const post::Ring& b = half->rings[r];
+    const post::Ring& b = run->rings[r];
     add(fmt::format("ring {}: minimum", result.rings[r].name), a.samples[a.minimum].magnitude,
         b.samples[b.minimum].magnitude, "Pa");
   }
   for (size_t p = 0; p < config.points.size(); ++p)
-    add("point " + config.points[p].name, level->points[p].value.norm(), half->points[p].value.norm(), "Pa");
+    add("point " + config.points[p].name, level->points[p].value.norm(), run->points[p].value.norm(), "Pa");
   for (const char* key : {"wss", "tawss", "osi"}) {
-    const WallDifference w = time_step_wall(result, key);
+    const WallDifference w = check_wall(result, check, key, factor);
     if (!std::isfinite(w.l2)) continue;
     rows.push_back({fmt::format("whole wall: {} L2, P95", key), "-", "-", "-",
                     fmt::format("{:.2f} %, {:.2f} %", 100 * w.l2, 100 * w.p95), "of the reference's mean"});
     out.push_back({{"quantity", fmt::format("whole wall: {}", key)},
-                   {"time_step_error_l2_percent", 100 * w.l2},
-                   {"time_step_error_p95_percent", 100 * w.p95}});
+                   {keys[2] + "_l2_percent", 100 * w.l2},
+                   {keys[2] + "_p95_percent", 100 * w.p95}});
   }
-  doc.paragraph(fmt::format(
-      "{} run again at half the time step ({:g} s instead of {:g} s), saving at the same times: BDF2's error goes as "
-      "dt^2, so the run at dt is off the converged one by about 4/3 of its difference from the run at dt / 2. That "
-      "is the reference's temporal error (its time step is the same), set beside its spatial uncertainty: a "
-      "difference from the reference is called larger than its uncertainty only where it exceeds both.",
-      level->name, dt / 2, dt));
-  doc.table({"quantity", fmt::format("{} at dt", level->name), "at dt / 2", "difference", "temporal error (4/3 of it)",
-             "unit"},
-            rows);
+  doc.paragraph(paragraph);
+  std::vector<std::string> columns = {"quantity"};
+  for (size_t k = 0; k < header.size(); ++k) columns.push_back(k == 0 ? level->name + " " + header[0] : header[k]);
+  columns.push_back("unit");
+  doc.table(columns, rows);
   return out;
+}
+
+// The time step's share of the reference's error: the series' first level at dt and at dt / 2.
+Json time_step_section(Document& doc, const StudyConfig& config, const StudyResult& result, double dt) {
+  const auto [half, level] = check_pair(result, result.half_step);
+  if (!half) return Json::array();
+  return check_section(
+      doc, config, result, result.half_step, kTimeErrorFactor, "The time step's share",
+      fmt::format("{} run again at half the time step ({:g} s instead of {:g} s), saving at the same times: BDF2's "
+                  "error goes as dt^2, so the run at dt is off the converged one by about 4/3 of its difference from "
+                  "the run at dt / 2. That is the reference's temporal error (its time step is the same), set beside "
+                  "its spatial uncertainty: a difference from the reference is called larger than its uncertainty only "
+                  "where it exceeds both.",
+                  level->name, dt / 2, dt),
+      {"at dt", "at dt / 2", "difference", "temporal error (4/3 of it)"}, {"at_dt", "at_half_dt", "time_step_error"});
+}
+
+// The start-up's share: the series' first level and the same flow one period more.
+Json start_up_section(Document& doc, const StudyConfig& config, const StudyResult& result) {
+  const auto [next, level] = check_pair(result, result.next_period);
+  if (!next) return Json::array();
+  return check_section(
+      doc, config, result, result.next_period, 1.0, "The start-up's share",
+      fmt::format("{0}'s flow run one period ({1:g} s) more, from its last step, and read one period later (t = {2:g} "
+                  "s), its indices over the new last period: the flows start from rest (or the Stokes flow), and what "
+                  "changes from one period to the next is what is left of that start. Where a period takes the flow at "
+                  "least halfway to its periodic state, that change bounds what is left, the start-up's error, set "
+                  "beside the time step's: a difference is called larger than the reference's uncertainty only where "
+                  "it exceeds the spatial band and their sum. A large share says to run the case's flow longer "
+                  "(its [time] end one or more periods later).",
+                  level->name, result.period, result.time + result.period),
+      {"at t", "a period later", "change", "start-up error"}, {"at_t", "a_period_later", "start_up_error"});
 }
 
 // The whole-wall measures: per field (WSS at the study's time; TAWSS and OSI where the flows wrote
@@ -152,15 +217,15 @@ Json whole_wall_section(Document& doc, const StudyResult& result,
       }
       Ranked rank{quantity, {}, g.found ? 100.0 * g.band() : NAN,
                   g.found ? fmt::format("{:.2f} %", 100.0 * g.band()) : converges ? g.status : "not estimated", {}, true};
-      const WallDifference in_time = time_step_wall(result, key);
-      rank.time_band = 100.0 * (l2 ? in_time.l2 : in_time.p95);
-      if (std::isfinite(rank.time_band)) rank.uncertainty += fmt::format(" (time step: {:.2f} %)", rank.time_band);
+      const WallDifference in_time = check_wall(result, result.half_step, key, kTimeErrorFactor);
+      const WallDifference in_start = check_wall(result, result.next_period, key, 1.0);
+      TemporalError{l2 ? in_time.l2 : in_time.p95, l2 ? in_start.l2 : in_start.p95}.rank_into(rank, 1.0);
       for (const MeshRun& m : result.meshes) {
         if (&m == &reference || !m.wall.count(key)) continue;
         const double d = 100.0 * (l2 ? m.wall.at(key).l2 : m.wall.at(key).p95);
         if (!m.series) rank.differences.emplace_back(m.name, d);
         const std::string verdict =
-            timed_verdict(!g.found ? "unknown" : d > 100.0 * g.band() ? "larger" : "within", d, rank.time_band);
+            timed_verdict(!g.found ? "unknown" : d > 100.0 * g.band() ? "larger" : "within", d, rank.temporal_band());
         rows.push_back({quantity, m.name, fmt::format("{:.2f} %", d), rank.uncertainty, verdict});
         out.push_back({{"quantity", quantity},
                        {"field", key},

@@ -53,7 +53,8 @@ double since(Clock::time_point start) { return std::chrono::duration<double>(Clo
 // -q [--restart]` (its messages on ours), what it did read back from DIR/summary.json. OpenMPI runs
 // as root when told so (its environment); a failed run is an error naming the command.
 flow::SimulationSummary simulate_under_mpirun(const StudyConfig& config, const std::string& mesh,
-                                              const std::string& dir, bool restart, int time_step_divisor = 1) {
+                                              const std::string& dir, bool restart, int time_step_divisor = 1,
+                                              double end = 0.0) {
   if (config.program.empty()) throw InternalError("study: ranks > 1 without the program to run under mpirun");
   std::vector<std::string> command = {"mpirun", "-np",   std::to_string(config.ranks), config.program, "simulate",
                                       config.flow_case, "--mesh", mesh, "-o", dir, "-q"};
@@ -61,6 +62,10 @@ flow::SimulationSummary simulate_under_mpirun(const StudyConfig& config, const s
   if (time_step_divisor > 1) {
     command.push_back("--time-step-divisor");
     command.push_back(std::to_string(time_step_divisor));
+  }
+  if (end > 0.0) {
+    command.push_back("--end");
+    command.push_back(fmt::format("{:.17g}", end));
   }
   // Without the variables of this process's own MPI (a singleton once PETSc started here), which
   // would make mpirun take its processes for this one's.
@@ -187,59 +192,77 @@ void measure_whole_wall(StudyResult& result, const post::WallSeries& reference_s
     run.wall["tawss"] = wall_difference(result.reference_index_area, run.tawss_on_reference, reference_indices->tawss);
     run.wall["osi"] = wall_difference(result.reference_index_area, run.osi_on_reference, reference_indices->osi);
   }
-  if (result.half_step) {  // its fields on the reference's wall, for the time step's share of each measure
-    MeshRun& half = *result.half_step;
-    const post::WallField wall = post::wall_at_time(post::read_wall_series(half.folder + "/flow"), result.time);
-    half.wss_on_reference = interpolate(map_onto(wall.mesh, reference_wall.mesh), wall.wss);
-    const std::optional<WallIndices> indices = read_wall_indices(half.folder + "/flow");
+  // The checks' fields on the reference's wall, for the time step's and the start-up's share of each measure.
+  for (std::optional<MeshRun>* check : {&result.half_step, &result.next_period}) {
+    if (!*check) continue;
+    MeshRun& run = **check;
+    const post::WallField wall =
+        post::wall_at_time(post::read_wall_series(run.folder + "/flow"), result.time + run.read_after);
+    run.wss_on_reference = interpolate(map_onto(wall.mesh, reference_wall.mesh), wall.wss);
+    const std::optional<WallIndices> indices = read_wall_indices(run.folder + "/flow");
     if (reference_indices && indices) {
       const WallMap index_map = map_onto(indices->mesh, reference_indices->mesh);
-      half.tawss_on_reference = interpolate(index_map, indices->tawss);
-      half.osi_on_reference = interpolate(index_map, indices->osi);
+      run.tawss_on_reference = interpolate(index_map, indices->tawss);
+      run.osi_on_reference = interpolate(index_map, indices->osi);
     }
   }
 }
 
-// The series' first level's flow again at half the time step, saving at the same times (its stamp
-// the level's with "time step / 2": reused when it matches).
-MeshRun run_half_step(const StudyConfig& config, const flow::FlowCase& base_case, const MeshRun& level,
-                      const std::string& folder, const Reporter& reporter) {
-  MeshRun half;
-  half.name = level.name + "_half_dt";
-  half.folder = (fs::path(folder) / half.name).string();
-  const std::string flow_dir = half.folder + "/flow", stamp_file = half.folder + "/stamp.json";
-  const std::string key = fingerprint(io::read_file(level.folder + "/stamp.json") + "time step / 2");
+// The series' first level's flow run again as a check of the reference's temporal error (its stamp
+// the level's with the check's name: reused when it matches): at half the time step, saving at the
+// same times (`next_period` false); or one period more (`next_period` true: a copy of the level's
+// flow goes on from its last checkpoint to the case's end + period, read a period after the
+// study's time, its indices over the new last period).
+MeshRun run_check(const StudyConfig& config, const flow::FlowCase& base_case, const MeshRun& level,
+                  const std::string& folder, bool next_period, const Reporter& reporter) {
+  MeshRun check;
+  check.name = level.name + (next_period ? "_next_period" : "_half_dt");
+  check.folder = (fs::path(folder) / check.name).string();
+  check.read_after = next_period ? base_case.period : 0.0;
+  const std::string flow_dir = check.folder + "/flow", stamp_file = check.folder + "/stamp.json";
+  const std::string key =
+      fingerprint(io::read_file(level.folder + "/stamp.json") + (next_period ? "one period more" : "time step / 2"));
   const std::optional<Json> stamp = matching_stamp(stamp_file, key);
   if (stamp && fs::exists(flow_dir + "/wall.pvd")) {
-    for (const auto& [k, v] : (*stamp)["seconds"].items()) half.seconds[k] = v.get<double>();
-    half.reused = true;
-    reporter.info(fmt::format("study: {}: reused from {}", half.name, stamp_file));
+    for (const auto& [k, v] : (*stamp)["seconds"].items()) check.seconds[k] = v.get<double>();
+    check.reused = true;
+    reporter.info(fmt::format("study: {}: reused from {}", check.name, stamp_file));
   } else {
-    reporter.info(fmt::format("study: {}: {}'s flow again at half the time step ({:g} s)", half.name, level.name,
-                              base_case.dt / 2));
+    reporter.info(next_period ? fmt::format("study: {}: {}'s flow one period ({:g} s) more", check.name, level.name,
+                                            base_case.period)
+                              : fmt::format("study: {}: {}'s flow again at half the time step ({:g} s)", check.name,
+                                            level.name, base_case.dt / 2));
     const auto started = Clock::now();
-    fs::create_directories(flow_dir);
     flow::FlowCase fc = base_case;
     fc.mesh = level.folder + "/volume.msh";
-    flow::divide_time_step(fc, 2);
+    if (next_period) flow::set_end(fc, base_case.end + base_case.period);
+    else flow::divide_time_step(fc, 2);
     const std::string flow_key_file = flow_dir + "/study_flow_key";
-    const bool resume = fs::exists(flow_dir + "/checkpoint.bin") && fs::exists(flow_key_file) &&
-                        io::read_file(flow_key_file) == key;
+    const bool resume =
+        fs::exists(flow_dir + "/checkpoint.bin") && fs::exists(flow_key_file) && io::read_file(flow_key_file) == key;
+    if (next_period && !resume) {  // the level's flow as it ended, to go on from
+      fs::remove_all(flow_dir);
+      fs::create_directories(check.folder);
+      fs::copy(level.folder + "/flow", flow_dir, fs::copy_options::recursive);
+    }
+    fs::create_directories(flow_dir);
     io::write_text(flow_key_file, key);
-    const flow::SimulationSummary s = config.ranks > 1
-                                          ? simulate_under_mpirun(config, fc.mesh, flow_dir, resume, 2)
-                                          : flow::simulate(fc, flow_dir, "", reporter, resume);
+    const bool restart = resume || next_period;
+    const flow::SimulationSummary s =
+        config.ranks > 1 ? simulate_under_mpirun(config, fc.mesh, flow_dir, restart, next_period ? 1 : 2,
+                                                 next_period ? fc.end : 0.0)
+                         : flow::simulate(fc, flow_dir, "", reporter, restart);
     if (s.status == "stopped")
       throw StoppedError(fmt::format("stopped by signal {} in {}'s flow (its checkpoint is kept): run the same "
                                      "study again to go on",
-                                     s.signal, half.name),
+                                     s.signal, check.name),
                          s.signal);
-    half.seconds["flow"] = since(started);
-    io::write_text(stamp_file, Json{{"key", key}, {"mesh", half.name}, {"seconds", half.seconds}}.dump(2) + "\n");
+    check.seconds["flow"] = since(started);
+    io::write_text(stamp_file, Json{{"key", key}, {"mesh", check.name}, {"seconds", check.seconds}}.dump(2) + "\n");
   }
-  half.dofs = level.dofs;
-  half.volume_points = level.volume_points;
-  return half;
+  check.dofs = level.dofs;
+  check.volume_points = level.volume_points;
+  return check;
 }
 
 // A mesh's figures from its stamp (study.json's keys; those a stamp from before lacks as they were).
@@ -284,7 +307,8 @@ Json stamp_of(const MeshRun& run, const std::string& key) {
 
 // A mesh's WSS at the study's time on each ring and at each point.
 void sample_wall(MeshRun& run, const StudyResult& result, const std::vector<post::PointSpec>& points) {
-  const post::WallField wall = post::wall_at_time(post::read_wall_series(run.folder + "/flow"), result.time);
+  const post::WallField wall =
+      post::wall_at_time(post::read_wall_series(run.folder + "/flow"), result.time + run.read_after);
   for (const post::RingSpec& spec : result.rings) run.rings.push_back(post::cut_ring(wall.mesh, wall.wss, spec));
   run.points = post::probe_points(wall.mesh, wall.wss, points);
 }
@@ -392,7 +416,8 @@ void measure_meshes(StudyResult& result, const StudyConfig& config, const TriMes
   result.time = config.time.value_or(reference_series.frames.back().time);
   result.length_unit = reference_series.length_unit;
   for (MeshRun& run : result.meshes) sample_wall(run, result, config.points);
-  if (result.half_step) sample_wall(*result.half_step, result, config.points);
+  for (std::optional<MeshRun>* check : {&result.half_step, &result.next_period})
+    if (*check) sample_wall(**check, result, config.points);
   result.seconds["wss on rings and points"] = since(step);
 
   // Whole-wall measures (study/wall_difference.h): each mesh's WSS, TAWSS and OSI on the reference's wall.
@@ -522,7 +547,7 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
     }
   }
   if (const toml::table* t = root["reference"].as_table()) {
-    r.known_keys(*t, "reference", {"kind", "levels", "factor", "time_step_check"});
+    r.known_keys(*t, "reference", {"kind", "levels", "factor", "time_step_check", "period_check"});
     const io::TomlView v = root["reference"];
     try {
       c.reference = parse_reference_kind(r.text(v["kind"], "reference.kind", reference_kind_name(c.reference)));
@@ -531,6 +556,7 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
     }
     c.levels = r.integer(v["levels"], "reference.levels", c.levels, 1);
     c.time_step_check = r.flag(v["time_step_check"], "reference.time_step_check", c.time_step_check);
+    c.period_check = r.flag(v["period_check"], "reference.period_check", c.period_check);
     c.factor = r.number(v["factor"], "reference.factor", c.reference == ReferenceKind::envelope ? 1.33 : 2.0);
     if (!(c.factor > 1.0))
       r.fail("reference.factor", c.reference == ReferenceKind::envelope
@@ -759,7 +785,21 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
   // The time step's share (issue 46): the series' coarsest level's flow again at half the time step,
   // saved at the same times; what that changes is the reference's temporal error's measure.
   if (!base_case.steady && config.time_step_check && config.levels >= 1)
-    result.half_step = run_half_step(config, base_case, result.meshes[config.kinds.size()], folder, reporter);
+    result.half_step = run_check(config, base_case, result.meshes[config.kinds.size()], folder, false, reporter);
+  // The start-up's share: that level's flow one period more, where the case says its period.
+  result.period = base_case.steady ? 0.0 : base_case.period;
+  if (result.period > 0.0 && config.period_check && config.levels >= 1) {
+    const MeshRun& level = result.meshes[config.kinds.size()];
+    if (fs::exists(level.folder + "/flow/checkpoint.bin")) {
+      result.next_period = run_check(config, base_case, level, folder, true, reporter);
+    } else {
+      result.warnings.push_back(fmt::format("the start-up's share is not measured: {}'s flow has no checkpoint to go "
+                                            "on from (a flow from before they were written: run the study into a new "
+                                            "folder)",
+                                            level.folder));
+      reporter.warning(result.warnings.back());
+    }
+  }
   if (const std::string w = volume_count_warning(result.meshes); !w.empty()) {
     reporter.warning(w);
     result.warnings.push_back(w);

@@ -30,7 +30,8 @@
 //               1.95 times finer than any compared mesh) or 2.0 (uniform: that many times the
 //               triangles a level), time_step_check =
 //               true (an unsteady case: level 1's flow again at half the time step, the time step's
-//               share of the reference's error beside its grid convergence)
+//               share of the reference's error beside its grid convergence), period_check = true (a
+//               case with a [time] period: level 1's flow one period more, the start-up's share)
 //   [volume]    layers = 4, thickness_ratio = 0.1, layer_angle = 0 (the paper's layer on every
 //               mesh: a layer thickened for its angles on some meshes only would confound the
 //               comparison; see volume/boundary_layer.h), layer_split_angle = 0 (5: the long
@@ -85,6 +86,9 @@ struct StudyConfig {
   // report sets the time step's share of the reference's error beside the mesh's (`[reference]
   // time_step_check`).
   bool time_step_check = true;
+  // A periodic case (its [time] period): the same level's flow one period more, so that the report sets
+  // what is left of the start (the flow from rest not yet periodic) beside them (`[reference] period_check`).
+  bool period_check = true;
   int layers = 4;
   double thickness_ratio = 0.1;
   double layer_angle = 0.0;        // degrees: volume::BoundaryLayerOptions::min_angle_deg
@@ -143,6 +147,7 @@ struct MeshRun {
   // reference's wall they were measured from.
   std::map<std::string, WallDifference> wall = {};
   std::vector<Vec3> wss_on_reference = {};
+  double read_after = 0.0;  // s: read this long after the study's time (a run one period longer: the period)
   std::vector<double> tawss_on_reference = {}, osi_on_reference = {};
 };
 
@@ -159,6 +164,9 @@ struct StudyResult {
   // The series' coarsest level run again at half the time step (unsteady cases, time_step_check):
   // its rings, points and fields on the reference's wall.
   std::optional<MeshRun> half_step;
+  // The same level one period more (periodic cases, period_check): the start-up's share.
+  std::optional<MeshRun> next_period;
+  double period = 0.0;  // s: the case's (0: none, or steady)
   double time_step = 0.0;  // s: the case's (0: steady)
   std::map<std::string, double> seconds;  // input analysis, post-processing, report, total
   std::vector<std::string> warnings;      // e.g. compared meshes off their triangle count

@@ -423,16 +423,11 @@ void ring_minimum_section(Document& doc, const StudyResult& result, const Conver
       } else if (have_gci && ref_mean > 0.0 && std::isfinite(g.spread) && g.spread > 0.0) {
         rank.uncertainty = fmt::format(">= {:.2f} % (spread)", 100.0 * g.spread * std::abs(g.phi1) / ref_mean);
       }
-      double time_error = NAN;  // Pa
-      if (const auto [half, level] = time_pair(result); half) {
-        const post::Ring& a = half->rings[r];
-        const post::Ring& b = level->rings[r];
-        time_error = kTimeErrorFactor * std::abs(a.samples[a.minimum].magnitude - b.samples[b.minimum].magnitude);
-        if (ref_mean > 0.0) {
-          rank.time_band = 100.0 * time_error / ref_mean;
-          rank.uncertainty += fmt::format(" (time step: {:.2f} %)", rank.time_band);
-        }
-      }
+      const TemporalError temporal = temporal_error(result, [r](const MeshRun& run) {
+        return run.rings[r].samples[run.rings[r].minimum].magnitude;
+      });
+      const double time_error = temporal.total();  // Pa
+      if (ref_mean > 0.0) temporal.rank_into(rank, ref_mean);
       for (const MeshRun& m : meshes) {
         if (&m == &reference) continue;
         const post::RingSample& least = m.rings[r].samples[m.rings[r].minimum];
@@ -508,14 +503,10 @@ void point_section(Document& doc, const StudyConfig& config, const StudyResult& 
       BarSeries s{"point " + config.points[p].name, {}};
       Ranked rank{"point " + config.points[p].name, {}, have_gci && g.found ? 100.0 * g.gci_fine : NAN,
                   have_gci ? uncertainty(g) : "not estimated", {}, false};
-      double time_error = NAN;  // Pa
-      if (const auto [half, level] = time_pair(result); half) {
-        time_error = kTimeErrorFactor * std::abs(half->points[p].value.norm() - level->points[p].value.norm());
-        if (ref > 0.0) {
-          rank.time_band = 100.0 * time_error / ref;
-          rank.uncertainty += fmt::format(" (time step: {:.2f} %)", rank.time_band);
-        }
-      }
+      const TemporalError temporal =
+          temporal_error(result, [p](const MeshRun& run) { return run.points[p].value.norm(); });
+      const double time_error = temporal.total();  // Pa
+      if (ref > 0.0) temporal.rank_into(rank, ref);
       for (const MeshRun& m : meshes) {
         if (&m == &reference) continue;
         const double v = m.points[p].value.norm(), d = relative_difference(v, ref);
@@ -578,7 +569,7 @@ Json summary_section(Document& doc, size_t markdown_at, size_t html_at, const St
         const double finer = q.outresolved.count(name) ? q.outresolved.at(name) : NAN;
         if (std::isfinite(finer) && finer < kOutResolves)
           untold.push_back(fmt::format("{} (reference {})", name, times(finer)));
-        else if (std::isfinite(q.band) && !(std::abs(d) <= q.band) && !(std::abs(d) <= q.time_band))
+        else if (std::isfinite(q.band) && !(std::abs(d) <= q.band) && !(std::abs(d) <= q.temporal_band()))
           beyond.push_back(name);
         list.push_back({{"mesh", name}, {"difference_percent", std::isfinite(d) ? Json(d) : Json(nullptr)},
                         {"place", k + 1}});
@@ -594,6 +585,7 @@ Json summary_section(Document& doc, size_t markdown_at, size_t html_at, const St
                           {"reference_uncertainty_percent", std::isfinite(q.band) ? Json(q.band) : Json(nullptr)},
                           {"beyond_uncertainty", beyond},
                           {"time_step_error_percent", std::isfinite(q.time_band) ? Json(q.time_band) : Json(nullptr)},
+                          {"start_up_error_percent", std::isfinite(q.start_band) ? Json(q.start_band) : Json(nullptr)},
                           {"not_out_resolved", untold}});
     }
     top.paragraph(
@@ -606,6 +598,13 @@ Json summary_section(Document& doc, size_t markdown_at, size_t html_at, const St
     top.table({"quantity", "closest to the reference first (difference)", "reference's uncertainty",
                "meshes beyond it", fmt::format("not told (reference under {:.1f}x as fine there)", kOutResolves)},
               ranking_rows);
+    const std::vector<std::string> unsettled = unsettled_quantities(ranked);
+    if (!unsettled.empty())
+      top.paragraph(fmt::format(
+          "What is left of the flows' start (the start-up's share) exceeds the reference's spatial uncertainty at "
+          "{}: over the span these cover the flows are not yet periodic, so that their differences partly measure "
+          "the start. Run the case longer (its [time] end one or more periods later) for them.",
+          fmt::join(unsettled, ", ")));
     std::vector<std::vector<std::string>> cost;
     std::vector<std::pair<double, std::string>> overall, on_wall;
     Json means = Json::array();
@@ -653,7 +652,8 @@ Json summary_section(Document& doc, size_t markdown_at, size_t html_at, const St
     doc.markdown.insert(markdown_at, top.markdown);
     doc.html.insert(html_at, top.html);
     summary = {{"rankings", rankings}, {"mean_place", means},
-               {"closest_on_average", closest}, {"closest_on_whole_wall", closest_on_wall}};
+               {"closest_on_average", closest}, {"closest_on_whole_wall", closest_on_wall},
+               {"start_up_exceeds_spatial_uncertainty", unsettled}};
   }
 
   return summary;
@@ -720,8 +720,9 @@ void timings_section(Document& doc, const StudyResult& result) {
     const auto seconds = [&](const char* k) { return m.seconds.count(k) ? number(m.seconds.at(k), 3) : "-"; };
     timing.push_back({m.name, seconds("remesh"), seconds("volume"), seconds("flow"), m.reused ? "reused" : "computed"});
   }
-  if (result.half_step) {
-    const MeshRun& h = *result.half_step;
+  for (const std::optional<MeshRun>* check : {&result.half_step, &result.next_period}) {
+    if (!*check) continue;
+    const MeshRun& h = **check;
     timing.push_back({h.name, "-", "-", h.seconds.count("flow") ? number(h.seconds.at("flow"), 3) : "-",
                       h.reused ? "reused" : "computed"});
   }
@@ -776,6 +777,7 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
   point_section(doc, config, result, gci, numbers, ranked);
   const Json whole_wall = whole_wall_section(doc, result, grids, ranked);
   const Json time_step = time_step_section(doc, config, result, result.time_step);
+  const Json start_up = start_up_section(doc, config, result);
 
   const Json summary = summary_section(doc, summary_markdown, summary_html, result, ranked);
   pictures_section(doc, config, result, reporter);
@@ -826,6 +828,8 @@ void write_report(const StudyConfig& config, StudyResult& result, const std::str
   j["reference_kind"] = reference_kind_name(config.reference);
   j["whole_wall"] = whole_wall;
   j["time_step"] = time_step;
+  j["start_up"] = start_up;
+  j["period_s"] = result.period;
   j["resolution"] = resolution;
   j["summary"] = summary;
   j["seconds"] = result.seconds;

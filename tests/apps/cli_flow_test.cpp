@@ -167,6 +167,17 @@ TEST(Cli, SimulateStoppedBySigtermGoesOnWithRestart) {
   const RunResult none = run({"simulate", tmp.path("case.toml"), "-o", tmp.path("elsewhere"), "--restart"});
   EXPECT_EQ(none.code, 2);
   EXPECT_NE(last_line(none.err).find("no checkpoint to restart from"), std::string::npos) << none.err;
+  // --end: the finished run goes on to a later time (10 steps more); an end that is not a positive time is a
+  // one-line error, exit 2.
+  const RunResult longer =
+      run({"simulate", tmp.path("case.toml"), "-o", tmp.path("run"), "--restart", "--end", "0.35", "--json"});
+  ASSERT_EQ(longer.code, 0) << longer.err;
+  EXPECT_EQ(Json::parse(longer.out)["steps"], 70);
+  const RunResult zero = run({"simulate", tmp.path("case.toml"), "-o", tmp.path("zero"), "--end", "0"});
+  EXPECT_EQ(zero.code, 2);
+  EXPECT_NE(last_line(zero.err).find("the run's end must be a positive time in s (found 0)"), std::string::npos)
+      << zero.err;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path("zero")));
 }
 
 // mpirun -np 2, 3 and 4 give the one-process results to the solver's tolerance (issues 8, 28):

@@ -476,5 +476,55 @@ TEST(Simulate, ARestartGoesOnAsIfTheRunHadNotStopped) {
   EXPECT_THROW(simulate(whole, folder.path("nowhere"), "", silent_reporter(), true), InputError);
 }
 
+// The warnings of a run, kept.
+struct Warnings : Reporter {
+  mutable std::string text;
+  void warning(std::string_view message) const override { text += std::string(message) + "\n"; }
+};
+
+// A restart that extends a run moves the hemodynamic indices to the new last period: where that
+// starts after the checkpoint or at it, the indices of the run that was not stopped, over the same
+// window; where it started before (its first samples inside sums begun earlier), the sums go on,
+// the summary says over which span and a warning why.
+TEST(Simulate, ARestartThatExtendsTheRunTakesTheIndicesOverTheNewLastPeriod) {
+  const test::TemporaryFolder folder;
+  const auto with_period = [&](int steps) {
+    FlowCase c = read_case(pipe_case(folder, steps));
+    c.period = 0.008;  // 4 steps: the indices over the last 4
+    return c;
+  };
+  const FlowCase whole = with_period(16);
+  const SimulationSummary a = simulate(whole, folder.path("whole"));
+  EXPECT_NEAR(a.indices_start, 0.024, 1e-9);
+  EXPECT_NEAR(a.indices_end, 0.032, 1e-9);
+  const Results ra = results_in(folder.path("whole"), a.saved - 1);
+  for (const int first_steps : {8, 12}) {  // the checkpoint at t = 0.016 s (before the window), 0.024 s (at it)
+    SCOPED_TRACE(first_steps);
+    const std::string dir = folder.path(fmt::format("from_{}", first_steps));
+    const SimulationSummary first = simulate(with_period(first_steps), dir);
+    EXPECT_NEAR(first.indices_start, 0.002 * first_steps - 0.008, 1e-9);
+    const SimulationSummary b = simulate(whole, dir, "", silent_reporter(), /*restart=*/true);
+    EXPECT_NEAR(b.indices_start, 0.024, 1e-9);
+    EXPECT_NEAR(b.indices_end, 0.032, 1e-9);
+    // To the linear solver's tolerance (the restart builds its preconditioner again and starts without the
+    // solutions it kept); a window short of its first sample would be a quarter off.
+    const Results rb = results_in(dir, b.saved - 1);
+    EXPECT_LT(largest_difference(ra.tawss, rb.tawss), 1e-4);
+    const auto summary = nlohmann::json::parse(io::read_file(dir + "/summary.json"));
+    EXPECT_NEAR(summary["indices"]["start_s"].get<double>(), 0.024, 1e-9);
+  }
+  // From t = 0.028 s: the window's first samples are in the sums begun at 0.020 s.
+  const std::string dir = folder.path("from_14");
+  EXPECT_NEAR(simulate(with_period(14), dir).indices_start, 0.020, 1e-9);
+  const Warnings warnings;
+  const SimulationSummary c = simulate(whole, dir, "", warnings, /*restart=*/true);
+  EXPECT_NEAR(c.indices_start, 0.020, 1e-9);
+  EXPECT_NEAR(c.indices_end, 0.032, 1e-9);
+  EXPECT_NE(warnings.text.find("the hemodynamic indices will cover t = 0.02 to 0.032 s, not the last period (0.024 "
+                               "to 0.032 s)"),
+            std::string::npos)
+      << warnings.text;
+}
+
 }  // namespace
 }  // namespace vesselmesh::flow

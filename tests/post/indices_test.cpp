@@ -93,5 +93,28 @@ TEST(WssIndices, RefusesTooFewOrDisorderedSamples) {
   EXPECT_NEAR(a.result().tawss[0], 1.0, 1e-12);
 }
 
+
+// A checkpoint's sums for a window that moved on (a run extended on restart): kept where they began in
+// it, dropped where it starts after the checkpoint, begun again from the last sample where it starts at
+// it (the same indices as sums begun there), none where it began in between.
+TEST(WssIndices, ACheckpointsSumsFollowAWindowThatMovedOn) {
+  WssIndexAccumulator a;
+  for (int k = 0; k <= 4; ++k) a.add(0.1 * k, {Vec3(1.0 + k, 0, 0)});  // t = 0 to 0.4
+  const WssIndexAccumulator::State saved = a.state();
+  EXPECT_EQ(window_sums(saved, 0.0, 0.4, 0.1)->samples, 5);  // began in the window: kept
+  EXPECT_EQ(window_sums(saved, 0.6, 0.4, 0.1)->samples, 0);  // the window after the checkpoint
+  EXPECT_FALSE(window_sums(saved, 0.2, 0.4, 0.1).has_value());  // began before, the window's start inside
+  const std::optional<WssIndexAccumulator::State> at = window_sums(saved, 0.4, 0.4, 0.1);
+  ASSERT_TRUE(at.has_value());
+  WssIndexAccumulator resumed, fresh;
+  resumed.restore(*at);
+  EXPECT_EQ(resumed.samples(), 1);
+  fresh.add(0.4, {Vec3(5, 0, 0)});
+  for (WssIndexAccumulator* x : {&resumed, &fresh}) x->add(0.5, {Vec3(-3, 0, 0)});
+  EXPECT_DOUBLE_EQ(resumed.result().tawss[0], fresh.result().tawss[0]);
+  EXPECT_DOUBLE_EQ(resumed.result().osi[0], fresh.result().osi[0]);
+  EXPECT_DOUBLE_EQ(resumed.result().start, 0.4);
+}
+
 }  // namespace
 }  // namespace vesselmesh::post

@@ -7,6 +7,8 @@
 #include "io/surface.h"
 #include "mesh/locator.h"
 #include "mesh/statistics.h"
+#include "post/ring.h"
+#include "post/wall_series.h"
 #include "mesh/error.h"
 #include "test_support.h"
 
@@ -550,11 +552,14 @@ TEST(Study, AStoppedFlowGoesOnFromItsCheckpoint) {
 
 // The time step's share (issue 46): an unsteady study runs the series' first level again at half the
 // time step, saving at the same times; the report sets that difference beside the spatial one;
-// `time_step_check = false` leaves it out.
-TEST(Study, AnUnsteadyStudyMeasuresTheTimeStepsShare) {
+// `time_step_check = false` leaves it out. A periodic case's start-up's share likewise: the level's
+// flow one period more (from its last checkpoint), read a period later, its indices over the new last
+// period; `period_check = false` leaves it out.
+TEST(Study, AnUnsteadyStudyMeasuresTheTimeStepsAndTheStartUpsShare) {
   test::TemporaryFolder tmp;
   std::string unsteady = kCase;
-  unsteady.replace(unsteady.find("steady = true"), 13, "dt = 0.002\nend = 0.008\nsave_every = 2\ninitial = \"stokes\"");
+  unsteady.replace(unsteady.find("steady = true"), 13,
+                   "dt = 0.002\nend = 0.008\nperiod = 0.004\nsave_every = 2\ninitial = \"stokes\"");
   test::write_bytes(tmp.path("flow.toml"), unsteady);
   test::write_bytes(tmp.path("study.toml"), study_text(std::string(kSmallStudy) + "[[point]]\nname = \"A\"\npoint = [0, 3, 0]\n"));
   const StudyResult r = run_study(read_study(tmp.path("study.toml")), tmp.path("out"));
@@ -573,19 +578,64 @@ TEST(Study, AnUnsteadyStudyMeasuresTheTimeStepsShare) {
   EXPECT_NE(md.find("## The time step's share"), std::string::npos);
   EXPECT_NE(md.find("(time step: "), std::string::npos);  // beside the spatial uncertainty
   const nlohmann::json j = nlohmann::json::parse(io::read_file(tmp.path("out/study.json")));
-  // The ring's minimum, the point, the whole wall's WSS, TAWSS and OSI (over the whole run: no period).
+  // The ring's minimum, the point, the whole wall's WSS, TAWSS and OSI.
   ASSERT_EQ(j["time_step"].size(), 5u);
   EXPECT_EQ(j["time_step"][1]["quantity"], "point A");
   EXPECT_NEAR(j["time_step"][1]["time_step_error"].get<double>(), 4.0 / 3.0 * std::abs(at_dt - at_half), 1e-12);
   EXPECT_EQ(j["time_step"][2]["quantity"], "whole wall: wss");
   EXPECT_GT(j["time_step"][2]["time_step_error_l2_percent"].get<double>(), 0.0);
-  // Again: reused. Without the check: no half step.
-  EXPECT_TRUE(run_study(read_study(tmp.path("study.toml")), tmp.path("out")).half_step->reused);
-  test::write_bytes(tmp.path("off.toml"),
-                    study_text(std::string(kSmallStudy).replace(std::string(kSmallStudy).find("levels = 1"), 10,
-                                                                "levels = 1\ntime_step_check = false") +
-                               "[[point]]\nname = \"A\"\npoint = [0, 3, 0]\n"));
+
+  // One period more: to 0.012 s from the level's checkpoint at 0.008 s (2 steps), read at 0.012 s.
+  ASSERT_TRUE(r.next_period.has_value());
+  EXPECT_EQ(r.next_period->name, "level_1_next_period");
+  EXPECT_DOUBLE_EQ(r.period, 0.004);
+  const nlohmann::json next =
+      nlohmann::json::parse(io::read_file(tmp.path("out/level_1_next_period/flow/summary.json")));
+  EXPECT_EQ(next["steps"], 6);
+  EXPECT_NEAR(next["indices"]["start_s"].get<double>(), 0.008, 1e-9);
+  EXPECT_NEAR(next["indices"]["end_s"].get<double>(), 0.012, 1e-9);
+  const post::WallField later =
+      post::wall_at_time(post::read_wall_series(tmp.path("out/level_1_next_period/flow")), 0.012);
+  const double at_later =
+      post::probe_points(later.mesh, later.wss, {post::PointSpec{"A", Vec3(0, 3, 0)}})[0].value.norm();
+  ASSERT_EQ(r.next_period->points.size(), 1u);
+  EXPECT_DOUBLE_EQ(r.next_period->points[0].value.norm(), at_later);
+  EXPECT_NE(at_later, at_dt);  // the flow from the Stokes start still changing
+  EXPECT_NE(md.find("## The start-up's share"), std::string::npos);
+  EXPECT_NE(md.find(", start-up: "), std::string::npos);
+  ASSERT_EQ(j["start_up"].size(), 5u);
+  EXPECT_EQ(j["start_up"][1]["quantity"], "point A");
+  EXPECT_NEAR(j["start_up"][1]["start_up_error"].get<double>(), std::abs(at_dt - at_later), 1e-12);
+  EXPECT_GT(j["start_up"][4]["start_up_error_l2_percent"].get<double>(), 0.0);  // OSI
+  EXPECT_DOUBLE_EQ(j["period_s"].get<double>(), 0.004);
+  // The summary's rows: point A's over the reference's (level 1's) value; the whole wall's WSS in L2 as
+  // the sections give it, in percent.
+  int ranked = 0;
+  for (const auto& q : j["summary"]["rankings"]) {
+    if (q["quantity"] == "point A") {
+      ++ranked;
+      EXPECT_NEAR(q["start_up_error_percent"].get<double>(), 100.0 * std::abs(at_dt - at_later) / at_dt, 1e-9);
+    }
+    if (q["quantity"] == "whole wall: WSS at t = 0.008 s L2") {
+      ++ranked;
+      EXPECT_NEAR(q["time_step_error_percent"].get<double>(),
+                  j["time_step"][2]["time_step_error_l2_percent"].get<double>(), 1e-9);
+      EXPECT_NEAR(q["start_up_error_percent"].get<double>(),
+                  j["start_up"][2]["start_up_error_l2_percent"].get<double>(), 1e-9);
+    }
+  }
+  EXPECT_EQ(ranked, 2);
+
+  // Again: both reused. Without the checks: neither.
+  const StudyResult again = run_study(read_study(tmp.path("study.toml")), tmp.path("out"));
+  EXPECT_TRUE(again.half_step->reused);
+  EXPECT_TRUE(again.next_period->reused);
+  EXPECT_DOUBLE_EQ(again.next_period->points[0].value.norm(), at_later);
+  std::string off = kSmallStudy;
+  off.replace(off.find("levels = 1"), 10, "levels = 1\ntime_step_check = false\nperiod_check = false");
+  test::write_bytes(tmp.path("off.toml"), study_text(off + "[[point]]\nname = \"A\"\npoint = [0, 3, 0]\n"));
   EXPECT_FALSE(read_study(tmp.path("off.toml")).time_step_check);
+  EXPECT_FALSE(read_study(tmp.path("off.toml")).period_check);
 }
 
 // `ranks = 2`: each flow runs as `mpirun -np 2 vesselmesh simulate ...` and the study finds what
