@@ -294,6 +294,20 @@ TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
             1e-9);  // its first save was the shorter run's end
   EXPECT_LT(relative_difference(point_data("np2", "indices.pvtp", "tawss"), point_data("resumed", "indices.pvtp", "tawss")),
             1e-9);  // the indices' sums went on from the checkpoint
+  // Extended again by --end under mpirun, the case now saying its period: the indices over the new last period,
+  // begun at the checkpoint's step, as those of a run to that end from the start.
+  example.replace("end = 0.02", "end = 0.02\nperiod = 0.01");
+  test::write_bytes(tmp.path("case.toml"), example.text);
+  ASSERT_EQ(mpirun(2, "longer", " --end 0.03"), 0) << read_text(tmp.path("longer.err"));
+  ASSERT_EQ(mpirun(2, "resumed", " --restart --end 0.03"), 0) << read_text(tmp.path("resumed.err"));
+  for (const char* folder : {"longer", "resumed"}) {
+    const Json indices = Json::parse(read_text(tmp.path(std::string(folder) + "/summary.json")))["indices"];
+    EXPECT_NEAR(indices["start_s"].get<double>(), 0.02, 1e-9) << folder;
+    EXPECT_NEAR(indices["end_s"].get<double>(), 0.03, 1e-9) << folder;
+  }
+  EXPECT_LT(relative_difference(point_data("longer", "indices.pvtp", "tawss"),
+                                point_data("resumed", "indices.pvtp", "tawss")),
+            1e-9);
   // Bad input under mpirun: told once, by the first process, every process ending with exit 2 —
   // a mesh that is not one (only the first reads it) and a mesh file that is missing.
   test::write_bytes(tmp.path("broken.msh"), "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 garbage\n");
