@@ -59,9 +59,8 @@ struct SolveStats {
 // ext+i interpolation, strong threshold 0.6, aggressive coarsening on its first level (a hierarchy
 // of less memory, as many iterations and faster; at 1.4 M unknowns a time step took 4.81 s against
 // 6.69, the Stokes start 73 s against 107, 3172 MB against 3420; bench/flow_scaling.sh).
-// `one_way` (the time steps') smooths by one Gauss-Seidel sweep forward on the way down and one
-// backward on the way up (hypre's l1 variants: Gauss-Seidel within a process, l1-scaled Jacobi
-// across processes, which converges
+// It smooths by one Gauss-Seidel sweep forward on the way down and one backward on the way up (hypre's
+// l1 variants: Gauss-Seidel within a process, l1-scaled Jacobi across processes, which converges
 // however the points are split), where PETSc's default, a symmetric sweep each way (for CG), costs
 // twice the smoothing; neither GMRES on the right nor FGMRES needs a symmetric preconditioner.
 // - Time steps: the default's sweeps were about a third of a step's solve
@@ -71,35 +70,35 @@ struct SolveStats {
 //   two rounds), 0.76-0.83 on the study's level 2 (0.9 M unknowns, 10 steps); the reduced study from
 //   nothing 2420 s against 2864. Tried there too: a V(0,1) cycle (23 % more iterations), P_max 4
 //   truncation, aggressive coarsening on two levels, a strong threshold of 0.7: none faster.
-// - Steady Newton (issue 48): not taken (`one_way` false), as it would have been on these figures: it stalls
-//   Newton's iterations on the bifurcation aneurysm of Cli.SteadyNewtonSettlesOnABifurcationAneurysm (6000
-//   triangles, Re 180: 24 iterations against 12, the line search shortening ten steps at half the inflow,
-//   the residual creeping from 1.8e-2 to 1.1e-2), which is not understood yet. On the FDA nozzle at Re 500:
-//   296k unknowns (bench/fda_nozzle.sh's mesh 23 0.91, one process) 69.7 s against 81.4 (810 linear
-//   iterations against 844); the jet's core refined (JET=0.35, 744k unknowns, 2 processes) 335 s against 466
-//   (3050 against 3390: the default's ILU factors failed at the full inflow's first Newton iteration, these
-//   converged there in 951 iterations); bench/steady_vessels.sh at Re 300, one process: the carotid
-//   bifurcation 54.9 s against 59.3 (909 linear iterations against 892), the bifurcation aneurysm 204 s
-//   against 216 (2458 against 2519). Tried there too (the nozzle's two meshes): GMRES restarted after 100
-//   (the jet: 4436 iterations, 444 s: the ILU factors failed again), LGMRES and BiCGStab(l) (their estimated
-//   residuals miss the true one, 18-32 times the tolerance), SOR sweeps instead of ILU (2177 iterations,
-//   none failed, each dearer: 373 s), hypre's AMG or AIR on the velocity block (as many iterations as SOR or
-//   more, each over four times dearer).
-inline std::string schur_amg_options(bool one_way) {
+// - Steady Newton (issue 48): first held back, as it stalled Newton's iterations on the bifurcation aneurysm
+//   of Cli.SteadyNewtonSettlesOnABifurcationAneurysm (6000 triangles, Re 300: 24 iterations against 20, the
+//   line search shortening eight steps at half the inflow, the residual creeping from 1.8e-2 to 1.1e-2; with
+//   the default's sweeps the same stall, one iteration shorter); since a stalling stage moves on
+//   (NavierStokes::kStalledSteps) 18 iterations and 1010 linear (the default's 17 and 1044). On the FDA
+//   nozzle at Re 500: 296k unknowns (bench/fda_nozzle.sh's mesh 23 0.91, one process) 69.7 s against 81.4
+//   (810 linear iterations against 844; 83.9 against 95.2 s on a busier day); the jet's core refined
+//   (JET=0.35, 744k unknowns, 2 processes) 335 s against 466 (3050 against 3390: the default's ILU factors
+//   failed at the full inflow's first Newton iteration, these converged there in 951 iterations);
+//   bench/steady_vessels.sh at Re 300, one process: the carotid bifurcation 54.9 s against 59.3 (909
+//   linear iterations against 892), the bifurcation aneurysm 204 s against 216 (2458 against 2519). Tried
+//   there too (the nozzle's two meshes): GMRES restarted after 100 (the jet: 4436 iterations, 444 s: the
+//   ILU factors failed again), LGMRES and BiCGStab(l) (their estimated residuals miss the true one, 18-32
+//   times the tolerance), SOR sweeps instead of ILU (2177 iterations, none failed, each dearer: 373 s),
+//   hypre's AMG or AIR on the velocity block (as many iterations as SOR or more, each over four times dearer).
+inline std::string schur_amg_options() {
   return std::string("-fieldsplit_p_ksp_type preonly -fieldsplit_p_pc_type hypre -fieldsplit_p_pc_hypre_type boomeramg "
                      "-fieldsplit_p_pc_hypre_boomeramg_coarsen_type HMIS -fieldsplit_p_pc_hypre_boomeramg_interp_type "
                      "ext+i -fieldsplit_p_pc_hypre_boomeramg_strong_threshold 0.6 "
                      "-fieldsplit_p_pc_hypre_boomeramg_agg_nl 1") +
-         (one_way ? " -fieldsplit_p_pc_hypre_boomeramg_relax_type_down l1-Gauss-Seidel "
-                    "-fieldsplit_p_pc_hypre_boomeramg_relax_type_up backward-l1-Gauss-Seidel"
-                  : "");
+         " -fieldsplit_p_pc_hypre_boomeramg_relax_type_down l1-Gauss-Seidel "
+         "-fieldsplit_p_pc_hypre_boomeramg_relax_type_up backward-l1-Gauss-Seidel";
 }
 
 // Steady solves: GMRES (preconditioned on the right: the residual it tests is the system's) with
 // a Schur-complement field split, the velocity block by block-Jacobi ILU(0) (where its factors are
 // unstable, the steady solve checks the true residual and goes on with SOR sweeps instead:
 // LinearSolver::set_residual_check, sweep_velocity_blocks), the Schur complement by one AMG cycle
-// (schur_amg_options, its symmetric sweeps). Its tolerance is relative to the initial residual, which
+// (schur_amg_options). Its tolerance is relative to the initial residual, which
 // a steady iteration's initial guess (the iterate) makes the steady equations' residual there: each
 // solve cuts it 1000-fold (an inexact Newton's forcing term of 1e-3; the Stokes solve from rest
 // 1e6-fold, NavierStokes::solve_steady), so that the iterations converge in the residual itself.
@@ -119,7 +118,7 @@ inline std::string saddle_point_options() {
          "-pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full "
          "-pc_fieldsplit_schur_precondition user "
          "-fieldsplit_u_ksp_type preonly -fieldsplit_u_pc_type bjacobi -fieldsplit_u_sub_pc_type ilu " +
-         schur_amg_options(false);
+         schur_amg_options();
 }
 // Time steps, whose mass term makes the velocity block diagonally strong: the same Schur field
 // split, its velocity block by point-block Jacobi (the inverse of each point's 3 x 3 diagonal block:
@@ -161,7 +160,7 @@ inline std::string time_step_options() {
          "-pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full "
          "-pc_fieldsplit_schur_precondition user "
          "-fieldsplit_u_ksp_type preonly -fieldsplit_u_pc_type pbjacobi " +
-         schur_amg_options(true);
+         schur_amg_options();
 }
 // The Stokes start of an unsteady run (a solver of its own, gone before the time steps): no mass
 // term, so its velocity block by SOR (PETSc's: local to each process under MPI; point-block Jacobi

@@ -146,13 +146,14 @@ class NavierStokes {
   // steps damp the iteration (not a flow that is itself unsteady).
   // With the case's newton: the inflow taken up in stages (kInflowStages: Dirichlet velocities a
   // quarter, a half, then all of the case's), each stage from the flow extrapolated from the last
-  // two (a secant; zero flow at zero inflow before the first), to a change under kStageTolerance but
-  // the last; the Stokes flow at the first stage, then Newton's iterations: on
-  // the Galerkin convection (its full Jacobian, the stabilization in Picard's form) and, after a
-  // whole step, on the stabilization's terms too (their derivatives through the advecting
-  // velocity, the parameters tau_m and tau_c included: the exact Jacobian), each step cut back (halved down to kLeastStep) until the steady residual
-  // falls (Armijo's test, the residual evaluated by an assembly at the trial flow); where none does,
-  // the iteration again with the linearization below (Newton's on the convection, then Picard's).
+  // two (a secant; zero flow at zero inflow before the first), to a change under kStageTolerance (or
+  // until its Newton steps stall: kStalledSteps) but the last; the Stokes flow at the first stage, then
+  // Newton's iterations: on the Galerkin convection (its full Jacobian, the stabilization in Picard's
+  // form) and, after a whole step, on the stabilization's terms too (their derivatives through the
+  // advecting velocity, the parameters tau_m and tau_c included: the exact Jacobian), each step cut back
+  // (halved down to kLeastStep) until the steady residual falls (Armijo's test, the residual evaluated
+  // by an assembly at the trial flow); where none does, the iteration again with the linearization
+  // below (Newton's on the convection, then Picard's).
   // The iteration has settled when Newton's whole step is under the tolerance at the whole inflow.
   // A steady solve that does not settle in the case's steady_iterations is a ComputationError that
   // names the method, where the residual went, and what to try next (another method, running in time).
@@ -165,6 +166,10 @@ class NavierStokes {
   // but the last.
   static constexpr std::array<double, 3> kInflowStages = {0.25, 0.5, 1.0};
   static constexpr double kStageTolerance = 1e-2;
+  // A stage below the whole inflow whose Newton steps stall moves on too (kStalledSteps steps in a row
+  // cut back, each taking off less than kStallFall of the steady residual).
+  static constexpr int kStalledSteps = 2;
+  static constexpr double kStallFall = 0.1;
   // A steady iteration's linear system the iterative solver does not converge on (its true
   // residual checked: an answer whose true residual missed, or a failed solve, is solved again with
   // SOR sweeps on the velocity blocks first, LinearSolver::sweep_velocity_blocks) is solved directly (MUMPS) up to

@@ -213,6 +213,7 @@ StepReport NavierStokes::solve_steady() {
   std::vector<Vec3> advect(s.n(), Vec3::Zero()), none(s.n(), Vec3::Zero());
   std::vector<Vec3> stage_u(s.n(), Vec3::Zero());  // the last stage's flow (rest before the first)
   std::vector<double> stage_p(s.n(), 0.0);
+  int stalled = 0;  // this stage's iterations in a row whose cut-back step took off under kStallFall of the residual
   // Pseudo time steps (pseudo_transient): the step length, 0 for a Picard iteration (the first
   // iteration the Stokes solve either way). known: the iterate's steady residual, where a line search measured it.
   double pseudo_dt = 0.0, last_rate = 0.0, resume_dt = 0.0, known = -1.0;
@@ -290,12 +291,19 @@ StepReport NavierStokes::solve_steady() {
       level = level == Linearization::picard ? Linearization::convection : Linearization::full;
     // Settled when the step (Newton's whole step where it was cut back) is under the tolerance; a
     // stage below the whole inflow when it is under kStageTolerance: the next stage from its flow.
+    // A stage whose Newton steps stall (kStalledSteps cut back in a row, each taking off less than
+    // kStallFall of the residual) has done what it can for the next one: the next stage from its flow.
     const double step_change = report.change / (lambda > 0.0 ? lambda : 1.0);
-    if (stage + 1 < kInflowStages.size() && iteration > 0 && step_change < kStageTolerance) {
+    const bool stalling = s.fc.newton && lambda < 1.0 && residual > 0.0 && reached >= 0.0 &&
+                          reached > (1.0 - kStallFall) * residual;
+    stalled = stalling ? stalled + 1 : 0;
+    if (stage + 1 < kInflowStages.size() && iteration > 0 &&
+        (step_change < kStageTolerance || stalled >= kStalledSteps)) {
       s.start_next_stage(stage, stage_u, stage_p);
       known = -1.0;
       advect = s.u;
       ++stage;
+      stalled = 0;
       set_inflow();
       continue;
     }
