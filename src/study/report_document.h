@@ -84,6 +84,12 @@ constexpr double kOutResolves = 1.3;
 // the run at dt / 2.
 constexpr double kTimeErrorFactor = 4.0 / 3.0;
 
+// The sum of the parts measured (not NaN); NaN where neither is.
+inline double measured_sum(double a, double b) {
+  if (!std::isfinite(a) && !std::isfinite(b)) return NAN;
+  return (std::isfinite(a) ? a : 0.0) + (std::isfinite(b) ? b : 0.0);
+}
+
 // One quantity's differences of the compared meshes from the reference, for the summary.
 struct Ranked {
   std::string quantity;  // "ring NAME: minimum", "point NAME"
@@ -95,11 +101,7 @@ struct Ranked {
   // The reference's temporal error in the same percent, its two parts (NaN: not measured; TemporalError).
   double time_band = NAN, start_band = NAN;
   // Their sum, which a difference must exceed to be called real (NaN: neither measured).
-  double temporal_band() const {
-    return std::isfinite(time_band) || std::isfinite(start_band)
-               ? (std::isfinite(time_band) ? time_band : 0.0) + (std::isfinite(start_band) ? start_band : 0.0)
-               : NAN;
-  }
+  double temporal_band() const { return measured_sum(time_band, start_band); }
 };
 
 // The reference's temporal error at one quantity, from the checks that run the series' first level

@@ -59,10 +59,7 @@ void TemporalError::rank_into(Ranked& rank, double scale) const {
   if (!parts.empty()) rank.uncertainty += fmt::format(" ({})", fmt::join(parts, ", "));
 }
 
-double TemporalError::total() const {
-  if (!std::isfinite(time_step) && !std::isfinite(start_up)) return NAN;
-  return (std::isfinite(time_step) ? time_step : 0.0) + (std::isfinite(start_up) ? start_up : 0.0);
-}
+double TemporalError::total() const { return measured_sum(time_step, start_up); }
 
 TemporalError temporal_error(const StudyResult& result, const std::function<double(const MeshRun&)>& value) {
   TemporalError e;
