@@ -3,6 +3,7 @@
 #pragma once
 
 #include "mesh/tetmesh.h"
+#include "mesh/reporter.h"
 #include "mesh/trimesh.h"
 #include "study/raster.h"
 
@@ -13,6 +14,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace vesselmesh::test {
@@ -89,5 +91,11 @@ double share_of_pixels(const study::Image& image, const std::array<int, 4>& rect
 // 85 % of those explained by the view's scale (viridis for |WSS|, lit; blue-white-red for the compared views' differences, the
 // reference (the last view) keeping its |WSS|). Skips the test where Chromium is not installed.
 void expect_views_drawn(const std::string& html_file, int views);
+
+// A reporter that keeps the warnings it is given, one a line.
+struct Warnings : Reporter {
+  mutable std::string text;
+  void warning(std::string_view message) const override { text += std::string(message) + "\n"; }
+};
 
 }  // namespace vesselmesh::test

@@ -2,6 +2,8 @@
 // (Picard, pseudo time steps, Newton's staged inflow) and the Stokes start.
 #include "flow/navier_stokes_impl.h"
 
+#include <functional>
+
 namespace vesselmesh::flow {
 
 void NavierStokes::Impl::make_solver() {
@@ -194,6 +196,36 @@ void NavierStokes::Impl::start_next_stage(size_t stage, std::vector<Vec3>& stage
   x = state_rows(u, p);
 }
 
+namespace {
+
+// The pseudo time steps' length (steady_method = "pseudo-transient"): `dt`, 0 for a Picard iteration.
+struct PseudoSteps {
+  double dt = 0.0, last_rate = 0.0, resume = 0.0;
+  // After an iteration (a step of `dt`, or a Picard iteration) that changed the flow by `change`:
+  // `confirm` (a step settled it): a Picard iteration next, to confirm, the step kept to resume; after
+  // Stokes or a Picard iteration that did not confirm, the step before it, or one at kPseudoCflStart
+  // (cfl_per_second(): the largest CFL number of a step of 1 s, which cfl() is linear in); otherwise
+  // the change per unit pseudo time measures the steady residual: the step lengthened by the rate's
+  // fall (at least 1.2x while it falls, at most 2x), shortened (at most 2x) when it rises.
+  void next(bool confirm, double change, const std::function<double()>& cfl_per_second) {
+    const double used = dt;
+    if (confirm) {
+      resume = dt;
+      dt = 0.0;
+    } else if (dt == 0.0) {
+      const double per_second = resume > 0.0 ? 0.0 : cfl_per_second();
+      dt = resume > 0.0 ? resume : per_second > 0.0 ? NavierStokes::kPseudoCflStart / per_second : 0.0;
+    } else {
+      const double rate = change / used;
+      if (last_rate > 0.0)
+        dt *= rate <= last_rate ? std::clamp(last_rate / rate, 1.2, 2.0) : std::max(0.5, last_rate / rate);
+    }
+    last_rate = used > 0.0 ? change / used : 0.0;
+  }
+};
+
+}  // namespace
+
 StepReport NavierStokes::solve_steady() {
   Impl& s = *impl_;
   const auto start = Clock::now();
@@ -214,16 +246,17 @@ StepReport NavierStokes::solve_steady() {
   std::vector<Vec3> stage_u(s.n(), Vec3::Zero());  // the last stage's flow (rest before the first)
   std::vector<double> stage_p(s.n(), 0.0);
   int stalled = 0;  // this stage's iterations in a row whose cut-back step took off under kStallFall of the residual
-  // Pseudo time steps (pseudo_transient): the step length, 0 for a Picard iteration (the first
+  // Pseudo time steps (pseudo_transient): their length, 0 for a Picard iteration (the first
   // iteration the Stokes solve either way). known: the iterate's steady residual, where a line search measured it.
-  double pseudo_dt = 0.0, last_rate = 0.0, resume_dt = 0.0, known = -1.0;
+  PseudoSteps pseudo;
+  double& pseudo_dt = pseudo.dt;
+  double known = -1.0;
   bool settled = false;
   using Linearization = Impl::Linearization;
   Linearization level = Linearization::picard;  // the Stokes solve, then Newton's (fc.newton) or Picard's
   s.direct_now = false;
   for (int iteration = 0; iteration < s.fc.steady_iterations; ++iteration) {
     s.update_resistance(0.0);
-    const double used_dt = pseudo_dt;
     const auto assembly = Clock::now();
     std::vector<Vec3> history = none;
     if (pseudo_dt > 0.0)
@@ -321,23 +354,7 @@ StepReport NavierStokes::solve_steady() {
       settled = true;
       break;
     }
-    if (iteration > 0 && pseudo_dt > 0.0 && small) {
-      resume_dt = pseudo_dt;  // confirm with a Picard iteration
-      pseudo_dt = 0.0;
-    } else if (iteration == 0 || pseudo_dt == 0.0) {
-      // After Stokes a step at kPseudoCflStart (cfl() is linear in the step); after a Picard
-      // iteration that did not confirm, the step before it.
-      const double cfl_per_second = s.cfl(advect, 1.0);
-      pseudo_dt = resume_dt > 0.0 ? resume_dt : cfl_per_second > 0.0 ? kPseudoCflStart / cfl_per_second : 0.0;
-    } else {
-      // The change per unit pseudo time measures the steady residual: lengthen the step by the
-      // rate's fall (at least 1.2x while it falls, at most 2x), shorten it (at most 2x) when it
-      // rises.
-      const double rate = report.change / used_dt;
-      if (last_rate > 0.0)
-        pseudo_dt *= rate <= last_rate ? std::clamp(last_rate / rate, 1.2, 2.0) : std::max(0.5, last_rate / rate);
-    }
-    last_rate = used_dt > 0.0 ? report.change / used_dt : 0.0;
+    pseudo.next(iteration > 0 && pseudo_dt > 0.0 && small, report.change, [&] { return s.cfl(advect, 1.0); });
   }
   if (!settled) throw ComputationError(s.not_settled(report.change));
   // The answer's residual: the steady system assembled at it once more (Picard's form).

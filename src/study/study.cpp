@@ -265,6 +265,27 @@ MeshRun run_check(const StudyConfig& config, const flow::FlowCase& base_case, co
   return check;
 }
 
+// The checks of the reference's temporal error, each the series' coarsest level's flow run again
+// (run_check): at half the time step (issue 46: the time step's share), saved at the same times; and
+// where the case says its period, one period more (the start-up's share).
+void run_checks(const StudyConfig& config, const flow::FlowCase& base_case, const std::string& folder,
+                StudyResult& result, const Reporter& reporter) {
+  result.period = base_case.steady ? 0.0 : base_case.period;
+  if (config.levels < 1) return;
+  const MeshRun& level = result.meshes[config.kinds.size()];
+  if (!base_case.steady && config.time_step_check)
+    result.half_step = run_check(config, base_case, level, folder, false, reporter);
+  if (!(result.period > 0.0 && config.period_check)) return;
+  if (fs::exists(level.folder + "/flow/checkpoint.bin")) {
+    result.next_period = run_check(config, base_case, level, folder, true, reporter);
+    return;
+  }
+  result.warnings.push_back(fmt::format("the start-up's share is not measured: {}'s flow has no checkpoint to go on "
+                                        "from (a flow from before they were written: run the study into a new folder)",
+                                        level.folder));
+  reporter.warning(result.warnings.back());
+}
+
 // A mesh's figures from its stamp (study.json's keys; those a stamp from before lacks as they were).
 void read_stamp(const Json& j, const StudyConfig& config, MeshRun& run) {
   run.surface_triangles = j["surface_triangles"];
@@ -782,24 +803,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
   result.reference = static_cast<int>(result.meshes.size()) - 1;
   result.time_step = base_case.steady ? 0.0 : base_case.dt;
 
-  // The time step's share (issue 46): the series' coarsest level's flow again at half the time step,
-  // saved at the same times; what that changes is the reference's temporal error's measure.
-  if (!base_case.steady && config.time_step_check && config.levels >= 1)
-    result.half_step = run_check(config, base_case, result.meshes[config.kinds.size()], folder, false, reporter);
-  // The start-up's share: that level's flow one period more, where the case says its period.
-  result.period = base_case.steady ? 0.0 : base_case.period;
-  if (result.period > 0.0 && config.period_check && config.levels >= 1) {
-    const MeshRun& level = result.meshes[config.kinds.size()];
-    if (fs::exists(level.folder + "/flow/checkpoint.bin")) {
-      result.next_period = run_check(config, base_case, level, folder, true, reporter);
-    } else {
-      result.warnings.push_back(fmt::format("the start-up's share is not measured: {}'s flow has no checkpoint to go "
-                                            "on from (a flow from before they were written: run the study into a new "
-                                            "folder)",
-                                            level.folder));
-      reporter.warning(result.warnings.back());
-    }
-  }
+  run_checks(config, base_case, folder, result, reporter);
   if (const std::string w = volume_count_warning(result.meshes); !w.empty()) {
     reporter.warning(w);
     result.warnings.push_back(w);

@@ -476,12 +476,6 @@ TEST(Simulate, ARestartGoesOnAsIfTheRunHadNotStopped) {
   EXPECT_THROW(simulate(whole, folder.path("nowhere"), "", silent_reporter(), true), InputError);
 }
 
-// The warnings of a run, kept.
-struct Warnings : Reporter {
-  mutable std::string text;
-  void warning(std::string_view message) const override { text += std::string(message) + "\n"; }
-};
-
 // A restart that extends a run moves the hemodynamic indices to the new last period: where that
 // starts after the checkpoint or at it, the indices of the run that was not stopped, over the same
 // window; where it started before (its first samples inside sums begun earlier), the sums go on,
@@ -516,7 +510,7 @@ TEST(Simulate, ARestartThatExtendsTheRunTakesTheIndicesOverTheNewLastPeriod) {
   // From t = 0.028 s: the window's first samples are in the sums begun at 0.020 s.
   const std::string dir = folder.path("from_14");
   EXPECT_NEAR(simulate(with_period(14), dir).indices_start, 0.020, 1e-9);
-  const Warnings warnings;
+  const test::Warnings warnings;
   const SimulationSummary c = simulate(whole, dir, "", warnings, /*restart=*/true);
   EXPECT_NEAR(c.indices_start, 0.020, 1e-9);
   EXPECT_NEAR(c.indices_end, 0.032, 1e-9);

@@ -5,6 +5,7 @@
 
 #include "flow_test_cases.h"
 #include "parallel/processes.h"
+#include "test_support.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -26,12 +27,6 @@ struct SteadyLog : Reporter {
     const size_t at = message.find("residual before it ");
     if (at != std::string_view::npos) values.push_back(std::stod(std::string(message.substr(at + 19))));
   }
-};
-
-// The warnings of a run, kept.
-struct Warnings : Reporter {
-  mutable std::string text;
-  void warning(std::string_view message) const override { text += std::string(message) + "\n"; }
 };
 
 // steady_method = "pseudo-transient": pseudo time steps from Stokes, then a confirming Picard
@@ -153,7 +148,7 @@ TEST(NavierStokes, NewtonSettlesSuperlinearlyWhereFlowEntersAnOpenEnd) {
 TEST(NavierStokes, NewtonSettlesTheFdaNozzlesJetWhereIluFactorsFail) {
   const synth::NozzleOptions o{.inlet_length = 30.0, .outlet_length = 100.0, .resolution = 1.2};
   const TetMesh mesh = nozzle_volume(o);
-  const Warnings said;
+  const test::Warnings said;
   const FlowCase fc = pipe_case("steady = true\nsteady_iterations = 40",
                                 "profile = \"parabolic\"\nflow = 5.20624", "fda.toml");
   NavierStokes ns(mesh, fc, said);
@@ -205,7 +200,7 @@ TEST(NavierStokes, SteadySystemsTheIterativeSolverMissesAreSolvedDirectly) {
   // solve of three iterations: not one linear operator, as unstable ILU factors of Newton's
   // velocity block on the FDA nozzle were in effect): solved directly too, the warning saying why,
   // the same flow.
-  const Warnings said;
+  const test::Warnings said;
   const std::string varying = "-pc_type ksp -ksp_ksp_type gmres -ksp_ksp_max_it 3 -ksp_pc_type jacobi";
   NavierStokes checked(
       mesh, pipe_case(picard, inflow + "\n[solver]\npetsc_options = \"" + varying + "\"", "c.toml"), said);
