@@ -91,6 +91,9 @@ void write_distance_map(const std::string& path, const TriMesh& surface, const c
 struct SizingArgs {
   std::string kind;
   sizing::SizingOptions options;
+  std::string flow;                 // the flow kind: the `simulate` folder whose WSS it adapts to
+  std::vector<double> flow_times;   // s; empty: the last period's saved frames, or the last frame
+  double error_norm = 2.0;          // the L^p norm of the WSS's interpolation error made least
 };
 void add_sizing_options(CLI::App& app, SizingArgs& args, bool size_required = true);
 
@@ -98,6 +101,8 @@ struct SizedSurface {
   std::optional<analysis::CurvatureField> curvature;
   std::optional<centerline::Centerlines> centerlines;
   std::optional<centerline::DistanceMap> distance;
+  std::optional<std::vector<Sym3>> flow_metric;  // the flow kind's error metric on the surface's points
+  std::vector<double> flow_times;                 // s: the saved times it bounds
   sizing::SizeField field;
 };
 SizedSurface size_surface(const CheckedSurface& surface, const SizingArgs& args, const Reporter& reporter);

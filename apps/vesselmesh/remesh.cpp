@@ -54,14 +54,8 @@ std::vector<Sym3> read_metric(const std::string& path, const TriMesh& surface, s
       if (f.name == "radius" && f.components == 1) radius = f.values;
     return metric;
   }
-  remesh::SurfaceModel field(file.mesh, metric, remesh::FeatureOptions{});
-  std::vector<Sym3> out(surface.points.size());
   double farthest = 0.0;
-  for (size_t v = 0; v < out.size(); ++v) {
-    const remesh::Projection p = field.project(surface.points[v]);
-    farthest = std::max(farthest, (p.point - surface.points[v]).norm());
-    out[v] = p.metric;
-  }
+  std::vector<Sym3> out = remesh::carry_metric(file.mesh, metric, surface, farthest);
   const auto box = mesh::bounding_box(surface.points);
   if (farthest > 0.01 * (box[1] - box[0]).norm())
     throw InputError(fmt::format("{}: the field's surface lies up to {:.3g} mm from the surface to remesh: it belongs to "
@@ -254,6 +248,7 @@ Command add_remesh_command(CLI::App& parent) {
               json["output"] = o->output;
               json["units"] = "mm";
               json["size"] = sized ? Json(sizing::size_kind_name(sized->field.kind)) : Json("metric file");
+              if (sized && sized->flow_metric) json["flow_times_s"] = sized->flow_times;
               if (target > 0.0) {
                 json["target_triangles"] = std::lround(target);
                 json["count_note"] = result.count_note.empty() ? Json(nullptr) : Json(result.count_note);

@@ -6,6 +6,8 @@
 #include "io/medit.h"
 #include "io/surface.h"
 #include "mesh/error.h"
+#include "mesh/geometry.h"
+#include "post/wall_metric.h"
 #include "sizing/metric.h"
 
 #include <fmt/format.h>
@@ -16,9 +18,24 @@
 namespace vesselmesh::cli {
 
 void add_sizing_options(CLI::App& app, SizingArgs& args, bool size_required) {
-  app.add_option("--size", args.kind, "Size field: uniform, distance, curvature or anisotropic")
+  app.add_option("--size", args.kind,
+                 "Size field: uniform, distance, curvature, anisotropic, or flow (adapted to a flow's wall shear "
+                 "stress: give --flow and --target-triangles)")
       ->required(size_required)
-      ->check(CLI::IsMember({"uniform", "distance", "curvature", "anisotropic"}));
+      ->check(CLI::IsMember({"uniform", "distance", "curvature", "anisotropic", "flow"}));
+  app.add_option("--flow", args.flow,
+                 "--size flow: a 'vesselmesh simulate' output folder. The size field is finest where the linear "
+                 "interpolation of its WSS errs most (the recovered Hessian of each WSS component on its wall, "
+                 "intersected over the saved times, normalized for the error's L^p norm), anisotropic along the "
+                 "Hessian's directions");
+  app.add_option("--flow-time", args.flow_times,
+                 "--size flow: the times (s) whose WSS to bound (repeat; default: every saved frame of the last "
+                 "period, or the last frame of a steady flow)");
+  app.add_option("--error-norm", args.error_norm,
+                 "--size flow: p of the L^p norm of the WSS's interpolation error that the field makes least for its "
+                 "count (larger: closer to bounding the largest error)")
+      ->check(CLI::Range(1.0, 1e6))
+      ->capture_default_str();
   app.add_option("--h", args.options.h, "Uniform size (mm)");
   app.add_option("--points-per-circle", args.options.points_per_circle,
                  "N: points around the vessel (distance) or on the osculating circle (curvature)")
@@ -38,10 +55,25 @@ SizedSurface size_surface(const CheckedSurface& surface, const SizingArgs& args,
   sizing::SizingOptions options = args.options;
   options.kind = sizing::parse_size_kind(args.kind);
   const TriMesh& mesh = surface.file.mesh;
-  const bool needs_curvature = options.kind == sizing::SizeKind::curvature ||
-                               options.kind == sizing::SizeKind::anisotropic || options.max_chord_error > 0.0;
-  if (needs_curvature || options.kind != sizing::SizeKind::uniform)
+  const bool flow = options.kind == sizing::SizeKind::flow;
+  if (flow != !args.flow.empty()) throw OptionError("--size flow and --flow FOLDER go together");
+  if (!flow && (!args.flow_times.empty() || args.error_norm != 2.0))
+    throw OptionError("--flow-time and --error-norm go with --size flow");
+  if (flow && !(options.target_triangles > 0.0))
+    throw OptionError("--size flow needs --target-triangles: the flow says where to refine, the count how much");
+  if (options.kind != sizing::SizeKind::uniform || options.max_chord_error > 0.0)
     out.curvature = analysis::curvature(mesh, {}, reporter);
+  if (flow) {
+    const post::WallMetric wall = post::wall_error_metric(args.flow, args.flow_times, {.p = args.error_norm}, reporter);
+    double farthest = 0.0;
+    out.flow_metric = remesh::carry_metric(wall.wall, wall.metric, mesh, farthest);
+    out.flow_times = wall.times;
+    const auto box = mesh::bounding_box(mesh.points);
+    if (farthest > 0.01 * (box[1] - box[0]).norm())
+      throw InputError(fmt::format("{}: the flow's wall lies up to {:.3g} mm from {}: the flow was run on another "
+                                   "vessel (or the surface is in another unit: see --units)",
+                                   args.flow, farthest, surface.file.path));
+  }
   if (options.kind != sizing::SizeKind::uniform) {
     // Centerlines give the distance field and the radius range; without ends, the curvature
     // kinds fall back on the curvature for the range.
@@ -54,7 +86,8 @@ SizedSurface size_surface(const CheckedSurface& surface, const SizingArgs& args,
     }
   }
   sizing::SizeInputs inputs{.curvature = out.curvature ? &*out.curvature : nullptr,
-                            .distance = out.distance ? &*out.distance : nullptr};
+                            .distance = out.distance ? &*out.distance : nullptr,
+                            .flow = out.flow_metric ? &*out.flow_metric : nullptr};
   out.field = sizing::make_size_field(mesh, options, inputs, reporter);
   return out;
 }
@@ -82,7 +115,8 @@ Json size_json(const sizing::SizeField& field) {
 Command add_size_command(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand(
       "size", "The size field the remesher adapts to: per point an SPD metric (isotropic: I/h^2) from a uniform size, "
-              "the distance to the centerline, the mean curvature, or the principal curvatures (anisotropic); clamped, "
+              "the distance to the centerline, the mean curvature, the principal curvatures (anisotropic), or where a "
+              "flow's WSS is least well interpolated (flow); clamped, "
               "graded, optionally scaled to a triangle count. Writes point data size (mm), metric (xx,xy,xz,yy,yz,zz) "
               "and, when the surface has ends, radius (mm, the distance map's, for the remesher's distance bound)");
   struct Options {
@@ -117,6 +151,7 @@ Command add_size_command(CLI::App& parent) {
               json["output"] = o->output;
               json["units"] = "mm";
               json["points"] = surface.file.mesh.num_points();
+              if (sized.flow_metric) json["flow_times_s"] = sized.flow_times;
               json["seconds"] = round_to(seconds, 4);
               print_json(json);
             } else {

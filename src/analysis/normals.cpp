@@ -48,29 +48,6 @@ Vec3 unit_or_zero(const Vec3& v) {
   return n > 0.0 ? Vec3(v / n) : Vec3::Zero();
 }
 
-// Neighbours of v: its 1-ring (each incident triangle's other two corners), grown to the
-// 2-ring when smaller than min_ring. `stamp[w] == v + 1` marks w as taken for this v (the
-// array belongs to one thread), so membership costs O(1) however large the ring.
-void gather_ring(const TriMesh& mesh, const mesh::VertexTriangles& corners, int v, size_t min_ring,
-                 std::vector<int>& stamp, std::vector<int>& ring) {
-  const int mark = v + 1;
-  auto add = [&](int w) {
-    if (stamp[w] != mark) stamp[w] = mark, ring.push_back(w);
-  };
-  ring.clear();
-  stamp[v] = mark;
-  for (int corner : corners.of(v)) {
-    const Triangle& f = mesh.triangles[corner / 3];
-    add(f[(corner % 3 + 1) % 3]);
-    add(f[(corner % 3 + 2) % 3]);
-  }
-  if (ring.size() >= min_ring) return;
-  const size_t first = ring.size();
-  for (size_t i = 0; i < first; ++i)
-    for (int corner : corners.of(ring[i]))
-      for (int w : mesh.triangles[corner / 3]) add(w);
-}
-
 // The quadric fits of kBatch points are solved together, each step of the factorization a loop
 // over the batch: the solves run side by side instead of one long chain of dependent divisions
 // per point. Lanes do exactly the arithmetic a single solve would, so the result does not depend
@@ -283,7 +260,7 @@ void fit_normals(const TriMesh& mesh, const mesh::VertexTriangles& corners, int 
       // A large fan: the general path.
       const Vec3 start = unit_or_zero(weighted_sum(mesh, corners, v, NormalMethod::max));
       for (int d = 0; d < 3; ++d) batch.frame[d][lane] = start[d];
-      gather_ring(mesh, corners, v, kMinRing, stamps.local(), large_ring);
+      mesh::gather_ring(mesh, corners, v, kMinRing, stamps.local(), large_ring);
       if (static_cast<int>(large_ring.size()) < kMinRing || start.squaredNorm() == 0.0) continue;
       double length2 = 0.0;
       for (int w : large_ring) length2 += (mesh.points[w] - mesh.points[v]).squaredNorm();

@@ -76,6 +76,29 @@ VertexTriangles build_vertex_triangles(const TriMesh& mesh) { return incidence(m
 
 VertexTriangles build_vertex_corners(const TriMesh& mesh) { return incidence(mesh, true); }
 
+void gather_ring(const TriMesh& mesh, const VertexTriangles& corners, int v, size_t min_ring, std::vector<int>& stamp,
+                 std::vector<int>& ring, int max_rings, int min_rings) {
+  const int mark = v + 1;
+  auto add = [&](int w) {
+    if (stamp[w] != mark) stamp[w] = mark, ring.push_back(w);
+  };
+  ring.clear();
+  stamp[v] = mark;
+  for (int corner : corners.of(v)) {
+    const Triangle& f = mesh.triangles[corner / 3];
+    add(f[(corner % 3 + 1) % 3]);
+    add(f[(corner % 3 + 2) % 3]);
+  }
+  size_t first = 0;
+  for (int rings = 1; rings < max_rings && (rings < min_rings || ring.size() < min_ring); ++rings) {
+    const size_t last = ring.size();
+    for (size_t i = first; i < last; ++i)
+      for (int corner : corners.of(ring[i]))
+        for (int w : mesh.triangles[corner / 3]) add(w);
+    first = last;
+  }
+}
+
 std::vector<std::vector<int>> boundary_loops(const TriMesh& mesh, const EdgeMap& edges) {
   // next[a] = b for every boundary half-edge a -> b.
   std::vector<int> next(mesh.points.size(), -1);

@@ -45,6 +45,13 @@ VertexTriangles build_vertex_triangles(const TriMesh& mesh);
 // a point's loop over its triangles also knows its place in each.
 VertexTriangles build_vertex_corners(const TriMesh& mesh);
 
+// Neighbours of v (v itself left out): its 1-ring (each incident triangle's other two corners),
+// grown ring by ring to `min_rings` rings, and on while smaller than min_ring, `max_rings` at most. `corners` from
+// build_vertex_corners. `stamp` (one per point, owned by the calling thread) marks the points
+// taken: `stamp[w] == v + 1`, so membership costs O(1) however large the ring.
+void gather_ring(const TriMesh& mesh, const VertexTriangles& corners, int v, size_t min_ring, std::vector<int>& stamp,
+                 std::vector<int>& ring, int max_rings = 2, int min_rings = 1);
+
 // Boundary loops of a manifold, consistently oriented surface: each loop lists its vertices
 // in the direction of the triangles' own edges (a -> b where a triangle has the edge a -> b).
 // Loops are ordered by their smallest vertex id and start at it. Throws InputError naming

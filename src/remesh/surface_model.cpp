@@ -365,4 +365,17 @@ Projection SurfaceModel::project_on_curve(int curve, const Vec3& p) const {
   return out;
 }
 
+std::vector<Sym3> carry_metric(const TriMesh& from, const std::vector<Sym3>& metrics, const TriMesh& to,
+                               double& farthest) {
+  const SurfaceModel field(from, metrics, FeatureOptions{});
+  std::vector<Sym3> out(to.points.size());
+  farthest = 0.0;
+  for (size_t v = 0; v < out.size(); ++v) {
+    const Projection p = field.project(to.points[v]);
+    farthest = std::max(farthest, (p.point - to.points[v]).norm());
+    out[v] = p.metric;
+  }
+  return out;
+}
+
 }  // namespace vesselmesh::remesh

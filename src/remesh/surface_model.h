@@ -137,4 +137,10 @@ class SurfaceModel {
   std::vector<std::unique_ptr<Curve>> curves_;
 };
 
+// `metrics` given at `from`'s points carried onto each of `to`'s points: the point projected onto
+// `from` (log-Euclidean interpolation inside the triangle it lands in). `farthest`: the largest
+// distance a point moved (a field of another surface, or another unit, lies far).
+std::vector<Sym3> carry_metric(const TriMesh& from, const std::vector<Sym3>& metrics, const TriMesh& to,
+                               double& farthest);
+
 }  // namespace vesselmesh::remesh

@@ -6,6 +6,7 @@
 #include "sizing/gradation.h"
 #include "sizing/metric.h"
 
+#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -34,7 +35,13 @@ void validate(const SizingOptions& o, const SizeInputs& in, int points) {
     throw OptionError(fmt::format("--hmin ({}) is larger than --hmax ({})", o.hmin, o.hmax));
   if (o.hmin < 0.0 || o.hmax < 0.0 || o.max_chord_error < 0.0 || o.target_triangles < 0.0 || o.h < 0.0)
     throw OptionError("sizes, chord error and target count must not be negative");
-  const bool needs_curvature = o.kind == SizeKind::curvature || o.kind == SizeKind::anisotropic || o.max_chord_error > 0.0;
+  if (o.kind == SizeKind::flow && (!in.flow || static_cast<int>(in.flow->size()) != points))
+    throw InputError("the flow size field needs the flow's error metric on the surface's points");
+  if (o.kind == SizeKind::flow && !positive(o.target_triangles))
+    throw OptionError("the flow size field needs --target-triangles: the flow's error says where to refine, the count "
+                      "how much");
+  const bool needs_curvature = o.kind == SizeKind::curvature || o.kind == SizeKind::anisotropic ||
+                               o.kind == SizeKind::flow || o.max_chord_error > 0.0;
   if (needs_curvature && (!in.curvature || in.curvature->size() != points))
     throw InternalError("the curvature field is missing for this size field");
   if (o.kind == SizeKind::distance && (!in.distance || in.distance->distance.size() != static_cast<size_t>(points)))
@@ -46,12 +53,43 @@ void validate(const SizingOptions& o, const SizeInputs& in, int points) {
 struct RawField {
   std::vector<double> size;
   std::vector<std::array<double, 3>> aniso;  // h1, h2, hn along dir1, dir2, normal
+  std::vector<std::array<Vec3, 3>> frame;    // dir1, dir2, normal
 };
+
+// The flow's error metric in each point's tangent plane (the curvature's normal): its two
+// principal sizes and directions, the normal as the finer, all scaled so that the field meets
+// `target` triangles unclamped (its own scale is arbitrary; the clamps, in mm, then mean what
+// they say).
+void flow_field(const TriMesh& mesh, const SizeInputs& in, double target, RawField& raw) {
+  const analysis::CurvatureField& c = *in.curvature;
+  std::vector<Sym3> tangent(mesh.points.size());
+  for (int v = 0; v < mesh.num_points(); ++v) {
+    const Vec3 n = c.normal[v].squaredNorm() > 0.0 ? c.normal[v] : Vec3(c.dir1[v].cross(c.dir2[v]));
+    const Vec3 u = n.unitOrthogonal(), w = n.cross(u);
+    const Sym3& m = (*in.flow)[v];
+    Eigen::Matrix2d m2;
+    m2 << m.form(u, u), m.form(u, w), m.form(u, w), m.form(w, w);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(m2);
+    const Eigen::Vector2d l = eig.eigenvalues().cwiseMax(1e-300);
+    const Vec3 d1 = eig.eigenvectors()(0, 0) * u + eig.eigenvectors()(1, 0) * w;
+    raw.frame.push_back({d1, n.cross(d1), n});
+    raw.aniso.push_back({1.0 / std::sqrt(l[0]), 1.0 / std::sqrt(l[1]), 1.0 / std::sqrt(l[1])});
+    tangent[v] = metric_from_sizes(d1, raw.aniso[v][0], n.cross(d1), raw.aniso[v][1], n, raw.aniso[v][2]);
+  }
+  const double s = std::sqrt(predicted_triangles(mesh, tangent) / target);
+  for (std::array<double, 3>& h : raw.aniso)
+    for (double& x : h) x *= s;
+  for (const std::array<double, 3>& h : raw.aniso) raw.size.push_back(std::min(h[0], h[1]));
+}
 
 RawField raw_field(const TriMesh& mesh, const SizingOptions& o, const SizeInputs& in) {
   const int np = mesh.num_points();
   const double n = o.points_per_circle;
   RawField raw;
+  if (o.kind == SizeKind::flow) {
+    flow_field(mesh, in, o.target_triangles, raw);
+    return raw;
+  }
   raw.size.assign(np, 0.0);
   const double infinite = std::numeric_limits<double>::infinity();
   for (int v = 0; v < np; ++v) {
@@ -67,9 +105,13 @@ RawField raw_field(const TriMesh& mesh, const SizingOptions& o, const SizeInputs
         const double k1 = std::abs(in.curvature->k1[v]), k2 = std::abs(in.curvature->k2[v]);
         const double h1 = k1 > 0.0 ? kTwoPi / (k1 * n) : infinite, h2 = k2 > 0.0 ? kTwoPi / (k2 * n) : infinite;
         raw.aniso.push_back({h1, h2, std::min(h1, h2)});
+        const analysis::CurvatureField& c = *in.curvature;
+        raw.frame.push_back(
+            {c.dir1[v], c.dir2[v], c.normal[v].squaredNorm() > 0 ? c.normal[v] : Vec3(c.dir1[v].cross(c.dir2[v]))});
         raw.size[v] = std::min(h1, h2);
         break;
       }
+      case SizeKind::flow: break;
     }
   }
   return raw;
@@ -82,18 +124,16 @@ std::vector<Sym3> build_metrics(const TriMesh& mesh, const SizingOptions& o, con
   std::vector<Sym3> metrics(np);
   const double lo = s * hmin, hi = s * hmax;
   for (int v = 0; v < np; ++v) {
-    if (o.kind == SizeKind::anisotropic) {
-      const analysis::CurvatureField& c = *in.curvature;
+    if (!raw.aniso.empty()) {
       const auto& h = raw.aniso[v];
+      const auto& f = raw.frame[v];
       const double h1 = std::clamp(s * h[0], lo, hi), h2 = std::clamp(s * h[1], lo, hi);
-      metrics[v] = metric_from_sizes(c.dir1[v], h1, c.dir2[v], h2, c.normal[v].squaredNorm() > 0 ? c.normal[v]
-                                                                                                  : Vec3(c.dir1[v].cross(c.dir2[v])),
-                                     std::min(h1, h2));
+      metrics[v] = metric_from_sizes(f[0], h1, f[1], h2, f[2], std::min(h1, h2));
     } else {
       metrics[v] = isotropic_metric(std::clamp(s * raw.size[v], lo, hi));
     }
     if (o.max_chord_error > 0.0) {
-      const Sym3 chord = chord_metric(*in.curvature, v, o.max_chord_error, o.kind == SizeKind::anisotropic);
+      const Sym3 chord = chord_metric(*in.curvature, v, o.max_chord_error, !raw.aniso.empty());
       metrics[v] = intersect(metrics[v], lo > 0.0 ? clamp_sizes(chord, lo, std::numeric_limits<double>::infinity()) : chord);
     }
   }
@@ -123,7 +163,9 @@ SizeKind parse_size_kind(const std::string& name) {
   if (name == "distance") return SizeKind::distance;
   if (name == "curvature") return SizeKind::curvature;
   if (name == "anisotropic") return SizeKind::anisotropic;
-  throw OptionError(fmt::format("unknown size field '{}': use uniform, distance, curvature or anisotropic", name));
+  if (name == "flow") return SizeKind::flow;
+  throw OptionError(
+      fmt::format("unknown size field '{}': use uniform, distance, curvature, anisotropic or flow", name));
 }
 
 std::string size_kind_name(SizeKind kind) {
@@ -132,6 +174,7 @@ std::string size_kind_name(SizeKind kind) {
     case SizeKind::distance: return "distance";
     case SizeKind::curvature: return "curvature";
     case SizeKind::anisotropic: return "anisotropic";
+    case SizeKind::flow: return "flow";
   }
   return "uniform";
 }
@@ -179,7 +222,7 @@ SizeField make_size_field(const TriMesh& mesh, const SizingOptions& o, const Siz
   const RawField raw = raw_field(mesh, o, in);
   auto graded = [&](double s, SizeField& f) {
     f.metric = build_metrics(mesh, o, in, raw, field.hmin, field.hmax, s);
-    if (o.kind == SizeKind::anisotropic) {
+    if (o.kind == SizeKind::anisotropic || o.kind == SizeKind::flow) {
       f.gradation_passes = grade_metrics(mesh, f.metric, o.gradation);
     } else {
       std::vector<double> h(f.metric.size());

@@ -4,7 +4,12 @@
 //   distance     h = 2 pi d / N, d the distance to the centerline (N points around the vessel);
 //   curvature    h = 2 pi / (|H| N), N points on the osculating circle of the mean curvature;
 //   anisotropic  M = P diag(1/h1^2, 1/h2^2, 1/hn^2) P^T, P = [dir1, dir2, n], h_i =
-//                2 pi / (|k_i| N) along each principal direction, hn = min(h1, h2).
+//                2 pi / (|k_i| N) along each principal direction, hn = min(h1, h2);
+//   flow         the same form from a flow's error metric (sizing/hessian.h: where the WSS's
+//                linear interpolation errs most, finest; issue 52), carried onto the surface:
+//                its principal sizes and directions in the surface's tangent plane, scaled so
+//                that unclamped they give the target count (which it needs: the flow says
+//                where, the count how fine), hn = min(h1, h2).
 // Every size is clamped to [hmin, hmax] (defaults from the vessel's radii, never from its
 // bounding box), bounded by the chord error when asked (h <= sqrt(8 eps / |k|) along each
 // direction of normal curvature k: isotropic kinds with the largest |k|, the anisotropic
@@ -26,9 +31,9 @@
 
 namespace vesselmesh::sizing {
 
-enum class SizeKind { uniform, distance, curvature, anisotropic };
+enum class SizeKind { uniform, distance, curvature, anisotropic, flow };
 
-// "uniform", "distance", "curvature", "anisotropic"; OptionError otherwise.
+// "uniform", "distance", "curvature", "anisotropic", "flow"; OptionError otherwise.
 SizeKind parse_size_kind(const std::string& name);
 std::string size_kind_name(SizeKind kind);
 
@@ -44,10 +49,12 @@ struct SizingOptions {
 
 // What the kinds need: curvature (curvature, anisotropic, chord error) and the distance map
 // (distance). The vessel's radius range sets the default clamps: hmin = r_low / 10, hmax = r_high.
+// The flow kind needs the flow's error metric (per point, SPD; its scale does not matter).
 struct SizeInputs {
   const analysis::CurvatureField* curvature = nullptr;
   const centerline::DistanceMap* distance = nullptr;
   double radius_low = 0.0, radius_high = 0.0;
+  const std::vector<Sym3>* flow = nullptr;
 };
 
 // The radius range of a vessel: 5th and 95th percentiles of the distance map's radius, or,
@@ -57,7 +64,7 @@ void radius_range(const TriMesh& mesh, const SizeInputs& inputs, double& low, do
 struct SizeField {
   SizeKind kind = SizeKind::uniform;
   std::vector<Sym3> metric;   // per point
-  std::vector<double> size;   // per point: the isotropic size (anisotropic: the smallest)
+  std::vector<double> size;   // per point: the isotropic size (anisotropic, flow: the smallest)
   double hmin = 0.0, hmax = 0.0;
   double scale = 1.0;         // applied for the target count
   double predicted_triangles = 0.0;

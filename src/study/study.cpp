@@ -17,6 +17,7 @@
 #include "mesh/clean.h"
 #include "mesh/error.h"
 #include "mesh/locator.h"
+#include "post/wall_metric.h"
 #include "post/wall_series.h"
 #include "remesh/adapt.h"
 #include "remesh/extend.h"
@@ -490,6 +491,23 @@ std::vector<Planned> study_plan(const StudyConfig& config) {
   return plan;
 }
 
+// The compared mesh whose flow the flow kind adapts to: the curvature mesh where it is compared,
+// else the first.
+const MeshRun& flow_source(const std::vector<MeshRun>& made) {
+  for (const MeshRun& m : made)
+    if (m.name == "curvature") return m;
+  return made.front();
+}
+
+// The flow kind's error metric on the input (sizing/size_field.h), from the WSS of `source`'s flow
+// over its last period's saved frames (or its last frame).
+std::vector<Sym3> flow_metric(const TriMesh& surface, const MeshRun& source, const Reporter& reporter) {
+  reporter.info(fmt::format("study: flow: adapted to the WSS of the flow on the {} mesh", source.name));
+  const post::WallMetric wall = post::wall_error_metric(source.folder + "/flow", {}, {}, reporter);
+  double farthest = 0.0;
+  return remesh::carry_metric(wall.wall, wall.metric, surface, farthest);
+}
+
 // The study's input surface: read, repaired, with flow extensions on its open ends when asked (the
 // [[end]] points in `end_at` follow their ends).
 TriMesh study_input(const StudyConfig& config, std::vector<volume::EndAt>& end_at, const Reporter& reporter) {
@@ -566,6 +584,8 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
         r.fail("meshes", e.what());
       }
     }
+    if (!c.kinds.empty() && c.kinds.front() == sizing::SizeKind::flow)
+      r.fail("meshes", "\"flow\" adapts to the flow on another compared mesh: list a geometric kind before it");
   }
   if (const toml::table* t = root["reference"].as_table()) {
     r.known_keys(*t, "reference", {"kind", "levels", "factor", "time_step_check", "period_check"});
@@ -735,6 +755,11 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       what = fmt::format("envelope level {} scale={} layers={} growth={} interior={} {} {}\n{}", name, scale,
                          layer_design.layers, layer_design.growth, interior.factor, interior.gradation,
                          interior.core_fraction, envelope.key);
+    // The flow kind depends on its source's meshes and flow (their stamp).
+    const MeshRun* source = kind == sizing::SizeKind::flow ? &flow_source(result.meshes) : nullptr;
+    if (source)
+      what += fmt::format("flow from {} {}\n", source->name,
+                          fingerprint(io::read_file(source->folder + "/stamp.json")));
     const std::string mesh_key = fingerprint(common + what);
     const std::string flow_key = fingerprint(mesh_key + case_text);
     const std::string surface_file = run.folder + "/surface.vtp", volume_file = run.folder + "/volume.msh";
@@ -758,9 +783,10 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       } else {
         reporter.info(fmt::format("study: {} ({} of {}): surface mesh of about {:.0f} triangles", name, m + 1,
                                   plan.size(), run.target_triangles));
+        const std::vector<Sym3> adapted_to = source ? flow_metric(surface, *source, reporter) : std::vector<Sym3>{};
         const sizing::SizeField field = sizing::make_size_field(
             surface, {.kind = kind, .target_triangles = run.target_triangles},
-            {.curvature = &curvature, .distance = &distance}, reporter);
+            {.curvature = &curvature, .distance = &distance, .flow = &adapted_to}, reporter);
         remeshed = remesh::adapt_to_count(surface, field.metric, run.target_triangles, options, reporter);
       }
       io::write_vtp(surface_file, remeshed.mesh);

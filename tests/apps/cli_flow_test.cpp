@@ -467,6 +467,90 @@ TEST(Cli, SteadyNewtonSettlesOnABifurcationAneurysm) {
   EXPECT_GT(failed["steady_history"][3]["residual"].get<double>(), 1e-3);
 }
 
+// Triangles per mm^2 of a surface's wall between two axial positions (triangle centroids).
+double density_between(const TriMesh& mesh, double z_low, double z_high) {
+  double area = 0.0;
+  int count = 0;
+  for (const Triangle& t : mesh.triangles) {
+    const Vec3 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
+    const double z = (a.z() + b.z() + c.z()) / 3.0;
+    if (z < z_low || z > z_high) continue;
+    area += 0.5 * (b - a).cross(c - a).norm();
+    ++count;
+  }
+  return count / area;
+}
+
+// The flow size field (issue 52): a nozzle (inlet pipe, cone, throat, sudden step, outlet pipe;
+// radii 2 and 1 mm) remeshed to a steady flow's WSS at Re 100 in the throat puts its triangles
+// where the WSS changes: the cone and the throat, not the pipes where the flow is Poiseuille's;
+// the same mesh twice; what it needs and what it refuses, in one line with exit 2.
+TEST(Cli, RemeshToAFlowsWssRefinesTheNozzlesThroat) {
+  test::TemporaryFolder tmp;
+  ASSERT_EQ(run({"synth", "nozzle", "--radius", "2", "--throat-radius", "1", "--throat-length", "4",
+                 "--cone-half-angle", "20", "--inlet-length", "4", "--outlet-length", "12", "--resolution", "0.2",
+                 "-o", tmp.path("n.stl"), "-q"}).code,
+            0);
+  ASSERT_EQ(run({"remesh", tmp.path("n.stl"), "--size", "uniform", "--target-triangles", "3000", "-o",
+                 tmp.path("wall.vtp"), "-q"}).code,
+            0);
+  ASSERT_EQ(run({"volume", tmp.path("wall.vtp"), "-o", tmp.path("n.msh"), "-q"}).code, 0);
+  // Re = rho U D / mu = 100 in the throat: U = 0.165 m/s, Q = 0.52 mL/s.
+  test::write_bytes(tmp.path("case.toml"),
+                    "mesh = \"n.msh\"\nlength_unit = \"mm\"\n[fluid]\ndensity = 1060\nviscosity = 0.0035\n"
+                    "[time]\nsteady = true\n[[boundary]]\ntag = \"inlet\"\ntype = \"velocity\"\n"
+                    "profile = \"parabolic\"\nflow = 0.52\n[[boundary]]\ntag = \"outlet_1\"\ntype = \"traction\"\n"
+                    "[[boundary]]\ntag = \"wall\"\ntype = \"wall\"\n");
+  const RunResult flow = run({"simulate", tmp.path("case.toml"), "-o", tmp.path("flow"), "-q"});
+  ASSERT_EQ(flow.code, 0) << flow.err;
+  const std::vector<std::string> adapt = {"remesh", tmp.path("n.stl"), "--size", "flow", "--flow", tmp.path("flow"),
+                                          "--target-triangles", "3000", "--json", "-q", "-o"};
+  auto adapt_to = [&](const std::string& file) {
+    std::vector<std::string> args = adapt;
+    args.push_back(tmp.path(file));
+    return run(args);
+  };
+  const RunResult adapted = adapt_to("adapted.vtp");
+  ASSERT_EQ(adapted.code, 0) << adapted.err;
+  const Json json = adapted.json();
+  EXPECT_EQ(json["size"], "flow");
+  EXPECT_EQ(json["flow_times_s"], Json::array({0.0}));  // the steady flow's one frame
+  EXPECT_NEAR(json["triangles"].get<double>(), 3000.0, 90.0);
+  EXPECT_GT(json["min_angle_deg"].get<double>(), 15.0);
+  // Along the flow (+z): inlet pipe to z = -6.75, cone to -4, throat to the step at 0, outlet pipe.
+  const TriMesh uniform = io::read_surface(tmp.path("wall.vtp")).mesh;
+  const TriMesh mesh = io::read_surface(tmp.path("adapted.vtp")).mesh;
+  const double throat = density_between(mesh, -4.0, 0.0), cone = density_between(mesh, -6.75, -4.0);
+  EXPECT_GT(throat, 1.3 * density_between(uniform, -4.0, 0.0));  // measured 33.4 and 21.4 per mm^2
+  EXPECT_GT(cone, 1.3 * density_between(uniform, -6.75, -4.0));   // 21.4 and 14.8
+  EXPECT_GT(throat, 4.0 * density_between(mesh, 4.0, 12.0));     // the outlet pipe's 4.5
+  EXPECT_GT(cone, 2.5 * density_between(mesh, -10.7, -7.5));     // the inlet pipe's 6.0
+  ASSERT_EQ(adapt_to("again.vtp").code, 0);
+  EXPECT_EQ(read_text(tmp.path("adapted.vtp")), read_text(tmp.path("again.vtp")));
+
+  const auto refused = [&](std::vector<std::string> args, const std::string& part) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(last_line(r.err).find(part), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(tmp.path("bad.vtp")));
+  };
+  refused({"remesh", tmp.path("n.stl"), "--size", "flow", "--flow", tmp.path("flow"), "-o", tmp.path("bad.vtp")},
+          "--size flow needs --target-triangles");
+  refused({"remesh", tmp.path("n.stl"), "--size", "curvature", "--flow", tmp.path("flow"), "-o", tmp.path("bad.vtp")},
+          "--size flow and --flow FOLDER go together");
+  refused({"remesh", tmp.path("n.stl"), "--size", "flow", "--flow", tmp.path("n.msh"), "--target-triangles", "3000",
+           "-o", tmp.path("bad.vtp")},
+          "wall.pvd");
+  refused({"remesh", tmp.path("n.stl"), "--size", "flow", "--flow", tmp.path("flow"), "--flow-time", "2",
+           "--target-triangles", "3000", "-o", tmp.path("bad.vtp")},
+          "outside the saved results");
+  // Another vessel's flow: the wall lies far from the surface.
+  ASSERT_EQ(run({"synth", "cylinder", "--radius", "4", "--length", "8", "-o", tmp.path("pipe.stl"), "-q"}).code, 0);
+  refused({"remesh", tmp.path("pipe.stl"), "--size", "flow", "--flow", tmp.path("flow"), "--target-triangles", "3000",
+           "-o", tmp.path("bad.vtp")},
+          "the flow was run on another vessel");
+}
+
 // `extend` (issue 32): two of a Y's three ends by name and index, five radii each along their
 // normals; `info` finds three ends, the two moved; the moved centres name the ends for `volume`;
 // an unknown end or mode is a one-line error, exit 2.

@@ -150,6 +150,9 @@ TEST(StudyFile, NamesTheKeyOfEveryMistake) {
   EXPECT_NE(error(study_text("[reference]\nlevels = 0\n" + ring)).find("reference.levels: must be at least 1"),
             std::string::npos);
   EXPECT_NE(error(study_text("meshes = []\n" + ring)).find("meshes: empty: the envelope reference"), std::string::npos);
+  EXPECT_NE(error(study_text("meshes = [\"flow\", \"uniform\"]\n" + ring))
+                .find("meshes: \"flow\" adapts to the flow on"),
+            std::string::npos);
   // The defaults: an envelope series of three levels a third finer in h each (2.35 times the nodes);
   // the uniform kind keeps the seed's doubling of the triangles.
   const StudyConfig defaults = parse_study(study_text(ring), "s.toml");
@@ -208,6 +211,44 @@ TEST(Study, WarnsWhenTheComparedVolumesDiffer) {
   EXPECT_NE(w.find("6.0 %"), std::string::npos) << w;
   EXPECT_NE(w.find("10000 for uniform"), std::string::npos) << w;
   EXPECT_NE(w.find("10600 for curvature"), std::string::npos) << w;
+}
+
+// The flow kind (issue 52): adapted to the steady flow on the curvature mesh (listed after it, as
+// a study compares them), at the same count; its flow's mesh and the source's flow the stamp's
+// key: reused as it is, made again when the source's flow changes.
+TEST(Study, TheFlowKindAdaptsToTheCurvatureMeshsFlow) {
+  test::TemporaryFolder tmp;
+  test::write_bytes(tmp.path("flow.toml"), kCase);
+  std::string text = kSmallStudy;  // the small study with the curvature and flow meshes beside
+  const std::string meshes = "meshes = [\"uniform\"]";
+  text.replace(text.find(meshes), meshes.size(), "meshes = [\"uniform\", \"curvature\", \"flow\"]");
+  test::write_bytes(tmp.path("study.toml"), study_text(text));
+  const StudyConfig config = read_study(tmp.path("study.toml"));
+  const StudyResult r = run_study(config, tmp.path("out"));
+  ASSERT_EQ(r.meshes.size(), 4u);
+  const MeshRun& flow = r.meshes[2];
+  EXPECT_EQ(flow.name, "flow");
+  EXPECT_NEAR(flow.surface_triangles, 2000, 0.03 * 2000);
+  EXPECT_NEAR(flow.volume_points, r.meshes[0].volume_points, 0.02 * r.meshes[0].volume_points);  // equal nodes
+  ASSERT_EQ(flow.rings.size(), 1u);
+  EXPECT_TRUE(flow.rings[0].closed);
+  // Its wall is not the curvature mesh's: where the flow's WSS changes, the triangles differ.
+  const TriMesh adapted = io::read_surface(tmp.path("out/flow/surface.vtp")).mesh;
+  const TriMesh curved = io::read_surface(tmp.path("out/curvature/surface.vtp")).mesh;
+  EXPECT_NE(adapted.points.size(), curved.points.size());
+  const std::string md = io::read_file(tmp.path("out/report.md"));
+  EXPECT_NE(md.find("| flow | compared | 2000 |"), std::string::npos) << md.substr(0, 2000);
+  const StudyResult again = run_study(config, tmp.path("out"));
+  EXPECT_TRUE(again.meshes[2].reused);
+  EXPECT_EQ(again.meshes[2].surface_triangles, flow.surface_triangles);
+  // The source's stamp changed (as a new flow on it writes one), the source itself kept: the flow
+  // mesh is made again.
+  nlohmann::json stamp = nlohmann::json::parse(io::read_file(tmp.path("out/curvature/stamp.json")));
+  stamp["seconds"]["flow"] = 1.0;
+  test::write_bytes(tmp.path("out/curvature/stamp.json"), stamp.dump(2));
+  const StudyResult changed = run_study(config, tmp.path("out"));
+  EXPECT_TRUE(changed.meshes[1].reused);
+  EXPECT_FALSE(changed.meshes[2].reused);
 }
 
 TEST(Study, ARingMissingTheVesselStopsBeforeAnyMesh) {
