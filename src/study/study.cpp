@@ -757,6 +757,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
                          interior.core_fraction, envelope.key);
     // The flow kind depends on its source's meshes and flow (their stamp).
     const MeshRun* source = kind == sizing::SizeKind::flow ? &flow_source(result.meshes) : nullptr;
+    if (source) run.adapted_from = source->name;
     if (source)
       what += fmt::format("flow from {} {}\n", source->name,
                           fingerprint(io::read_file(source->folder + "/stamp.json")));

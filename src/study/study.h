@@ -25,7 +25,8 @@
 //   triangles = 8000           # the four meshes' surface triangles
 //   meshes = ["uniform", "distance", "curvature", "anisotropic"] (and "flow": adapted to the WSS of
 //               the flow on the curvature mesh, or on the first mesh listed, which must come before it:
-//               sizing/size_field.h's flow kind over its last period's saved frames, issue 52)
+//               sizing/size_field.h's flow kind over its last period's saved frames, issue 52; its cost
+//               in the summary counts that flow too)
 //   [reference] kind = "envelope" (or "uniform"), levels = 3, factor = 1.33 (envelope: each level
 //               that many times finer in h than the one before, level 1 the finest compared mesh
 //               at every point / 1.1: 1.33^3 = 2.35 times the volume nodes a level, the reference
@@ -138,6 +139,7 @@ struct MeshRun {
   double interior_size = 1.0;  // the interior's size factor its volume was made with
   std::map<std::string, double> seconds = {};  // remesh, volume, flow (those of the run that made them)
   bool reused = false;                         // loaded from an earlier run
+  std::string adapted_from = {};               // the flow kind: the compared mesh whose flow it adapts to
   std::string folder = {};                     // DIR/<name>
   std::vector<post::Ring> rings = {};
   std::vector<post::PointProbe> points = {};

@@ -5,6 +5,7 @@
 #include "flow/simulate.h"
 #include "io/atomic_file.h"
 #include "io/surface.h"
+#include "study/report_document.h"
 #include "mesh/locator.h"
 #include "mesh/statistics.h"
 #include "post/ring.h"
@@ -12,6 +13,7 @@
 #include "mesh/error.h"
 #include "test_support.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -238,8 +240,17 @@ TEST(Study, TheFlowKindAdaptsToTheCurvatureMeshsFlow) {
   EXPECT_NE(adapted.points.size(), curved.points.size());
   const std::string md = io::read_file(tmp.path("out/report.md"));
   EXPECT_NE(md.find("| flow | compared | 2000 |"), std::string::npos) << md.substr(0, 2000);
+  // Its cost counts the flow it adapts to.
+  EXPECT_EQ(flow.adapted_from, "curvature");
+  EXPECT_NE(md.find(fmt::format("{} + {} (curvature's flow, adapted to)", report::number(flow.seconds.at("flow"), 3),
+                                report::number(r.meshes[1].seconds.at("flow"), 3))),
+            std::string::npos);
+  const nlohmann::json j = nlohmann::json::parse(io::read_file(tmp.path("out/study.json")));
+  EXPECT_EQ(j["summary"]["mean_place"][2]["adapted_from"], "curvature");
+  EXPECT_TRUE(j["summary"]["mean_place"][0]["adapted_from"].is_null());
   const StudyResult again = run_study(config, tmp.path("out"));
   EXPECT_TRUE(again.meshes[2].reused);
+  EXPECT_EQ(again.meshes[2].adapted_from, "curvature");
   EXPECT_EQ(again.meshes[2].surface_triangles, flow.surface_triangles);
   // The source's stamp changed (as a new flow on it writes one), the source itself kept: the flow
   // mesh is made again.
