@@ -3,7 +3,6 @@
 
 #include "io/surface.h"
 #include "mesh/error.h"
-#include "mesh/geometry.h"
 #include "remesh/adapt.h"
 #include "remesh/reparametrize.h"
 #include "sizing/metric.h"
@@ -54,14 +53,7 @@ std::vector<Sym3> read_metric(const std::string& path, const TriMesh& surface, s
       if (f.name == "radius" && f.components == 1) radius = f.values;
     return metric;
   }
-  double farthest = 0.0;
-  std::vector<Sym3> out = remesh::carry_metric(file.mesh, metric, surface, farthest);
-  const auto box = mesh::bounding_box(surface.points);
-  if (farthest > 0.01 * (box[1] - box[0]).norm())
-    throw InputError(fmt::format("{}: the field's surface lies up to {:.3g} mm from the surface to remesh: it belongs to "
-                                 "another surface (or another unit)",
-                                 path, farthest));
-  return out;
+  return remesh::carry_metric(file.mesh, metric, surface, fmt::format("{}: the field's surface", path));
 }
 
 }  // namespace

@@ -6,7 +6,6 @@
 #include "io/medit.h"
 #include "io/surface.h"
 #include "mesh/error.h"
-#include "mesh/geometry.h"
 #include "post/wall_metric.h"
 #include "sizing/metric.h"
 
@@ -65,14 +64,8 @@ SizedSurface size_surface(const CheckedSurface& surface, const SizingArgs& args,
     out.curvature = analysis::curvature(mesh, {}, reporter);
   if (flow) {
     const post::WallMetric wall = post::wall_error_metric(args.flow, args.flow_times, {.p = args.error_norm}, reporter);
-    double farthest = 0.0;
-    out.flow_metric = remesh::carry_metric(wall.wall, wall.metric, mesh, farthest);
+    out.flow_metric = remesh::carry_metric(wall.wall, wall.metric, mesh, fmt::format("{}: the flow's wall", args.flow));
     out.flow_times = wall.times;
-    const auto box = mesh::bounding_box(mesh.points);
-    if (farthest > 0.01 * (box[1] - box[0]).norm())
-      throw InputError(fmt::format("{}: the flow's wall lies up to {:.3g} mm from {}: the flow was run on another "
-                                   "vessel (or the surface is in another unit: see --units)",
-                                   args.flow, farthest, surface.file.path));
   }
   if (options.kind != sizing::SizeKind::uniform) {
     // Centerlines give the distance field and the radius range; without ends, the curvature

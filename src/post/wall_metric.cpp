@@ -18,20 +18,17 @@ WallMetric wall_error_metric(const std::string& flow_directory, const std::vecto
     throw InputError(fmt::format("{}: the flow saved no wall frame", flow_directory));
   WallMetric out;
   // The frames, read one at a time: a cycle's frames of a large wall do not all fit at once.
-  std::vector<double> wanted = times;
-  const bool saved = wanted.empty();
-  if (saved) {
+  std::vector<const WallFrame*> saved;
+  if (times.empty()) {
     const double last = series.frames.back().time;
     const double from = series.period > 0.0 ? last - series.period : last;
     for (const WallFrame& f : series.frames)
-      if (f.time >= from - 1e-9 * std::max(1.0, std::abs(from))) wanted.push_back(f.time);
+      if (f.time >= from - 1e-9 * std::max(1.0, std::abs(from))) saved.push_back(&f);
   }
+  const size_t count = times.empty() ? saved.size() : times.size();
   std::vector<std::vector<double>> fields;
-  for (size_t i = 0; i < wanted.size(); ++i) {
-    const WallField f = saved ? read_wall_frame(*std::find_if(
-                                    series.frames.begin(), series.frames.end(),
-                                    [&](const WallFrame& w) { return w.time == wanted[i]; }))
-                              : wall_at_time(series, wanted[i]);
+  for (size_t i = 0; i < count; ++i) {
+    const WallField f = times.empty() ? read_wall_frame(*saved[i]) : wall_at_time(series, times[i]);
     if (i == 0) {
       out.wall = f.mesh;
     } else if (f.mesh.points.size() != out.wall.points.size() ||

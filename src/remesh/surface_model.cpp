@@ -6,6 +6,7 @@
 #include "sizing/metric.h"
 
 #include <Eigen/Eigenvalues>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -366,15 +367,20 @@ Projection SurfaceModel::project_on_curve(int curve, const Vec3& p) const {
 }
 
 std::vector<Sym3> carry_metric(const TriMesh& from, const std::vector<Sym3>& metrics, const TriMesh& to,
-                               double& farthest) {
+                               const std::string& what) {
   const SurfaceModel field(from, metrics, FeatureOptions{});
   std::vector<Sym3> out(to.points.size());
-  farthest = 0.0;
+  double farthest = 0.0;
   for (size_t v = 0; v < out.size(); ++v) {
     const Projection p = field.project(to.points[v]);
     farthest = std::max(farthest, (p.point - to.points[v]).norm());
     out[v] = p.metric;
   }
+  const auto box = mesh::bounding_box(to.points);
+  if (farthest > 0.01 * (box[1] - box[0]).norm())
+    throw InputError(fmt::format("{} lies up to {:.3g} mm from the surface to remesh: it belongs to another surface "
+                                 "or vessel (or is in another unit: see --units)",
+                                 what, farthest));
   return out;
 }
 

@@ -30,6 +30,7 @@
 
 #include <array>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace vesselmesh::remesh {
@@ -138,9 +139,10 @@ class SurfaceModel {
 };
 
 // `metrics` given at `from`'s points carried onto each of `to`'s points: the point projected onto
-// `from` (log-Euclidean interpolation inside the triangle it lands in). `farthest`: the largest
-// distance a point moved (a field of another surface, or another unit, lies far).
+// `from` (log-Euclidean interpolation inside the triangle it lands in). InputError, beginning with
+// `what` (the field's name for the user), where a point of `to` lies farther from `from` than 1 % of
+// `to`'s bounding box: the field belongs to another surface, or is in another unit.
 std::vector<Sym3> carry_metric(const TriMesh& from, const std::vector<Sym3>& metrics, const TriMesh& to,
-                               double& farthest);
+                               const std::string& what);
 
 }  // namespace vesselmesh::remesh

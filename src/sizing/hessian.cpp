@@ -145,8 +145,8 @@ std::vector<Sym3> error_metric(const TriMesh& mesh, const std::vector<std::vecto
   const auto box = mesh::bounding_box(mesh.points);
   const double extent2 = (box[1] - box[0]).squaredNorm();
   const std::string task = "recovering the fields' Hessians";
-  // The running intersection in each point's tangent frame; `started` until the first field
-  // that is not linear everywhere.
+  // The running intersection in each point's tangent frame, from the first field that is not
+  // linear everywhere (`largest` > 0 from then on).
   std::vector<Eigen::Matrix2d> m(np, Eigen::Matrix2d::Zero());
   double largest = 0.0;
   for (size_t i = 0; i < fields.size(); ++i) {

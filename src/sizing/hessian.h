@@ -34,8 +34,8 @@ std::vector<Sym3> recover_hessians(const TriMesh& mesh, const std::vector<double
                                    const std::vector<Vec3>& normals);
 
 struct ErrorMetricOptions {
-  double p =
-      2.0;  // the L^p norm of the interpolation error to make least (>= 1; infinity: no det factor)
+  // The L^p norm of the interpolation error to make least (>= 1; infinity: no det factor).
+  double p = 2.0;
   // Eigenvalues of the intersected |H| below this fraction of the largest anywhere are raised to
   // it (a field linear along a direction asks no size there; the clamps of the size field bound
   // it).

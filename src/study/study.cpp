@@ -504,8 +504,7 @@ const MeshRun& flow_source(const std::vector<MeshRun>& made) {
 std::vector<Sym3> flow_metric(const TriMesh& surface, const MeshRun& source, const Reporter& reporter) {
   reporter.info(fmt::format("study: flow: adapted to the WSS of the flow on the {} mesh", source.name));
   const post::WallMetric wall = post::wall_error_metric(source.folder + "/flow", {}, {}, reporter);
-  double farthest = 0.0;
-  return remesh::carry_metric(wall.wall, wall.metric, surface, farthest);
+  return remesh::carry_metric(wall.wall, wall.metric, surface, fmt::format("{}'s flow's wall", source.name));
 }
 
 // The study's input surface: read, repaired, with flow extensions on its open ends when asked (the

@@ -548,7 +548,7 @@ TEST(Cli, RemeshToAFlowsWssRefinesTheNozzlesThroat) {
   ASSERT_EQ(run({"synth", "cylinder", "--radius", "4", "--length", "8", "-o", tmp.path("pipe.stl"), "-q"}).code, 0);
   refused({"remesh", tmp.path("pipe.stl"), "--size", "flow", "--flow", tmp.path("flow"), "--target-triangles", "3000",
            "-o", tmp.path("bad.vtp")},
-          "the flow was run on another vessel");
+          "the flow's wall lies up to");
 }
 
 // `extend` (issue 32): two of a Y's three ends by name and index, five radii each along their
