@@ -4,7 +4,8 @@
 // Input: a clean, manifold surface (mesh::clean) and an SPD metric per input point
 // (sizing/). Output: a surface whose edges have unit length in the metric, with well-shaped
 // triangles (quality measured in the metric; where the distance bound stretched an isotropic
-// kind's metric along tubes, the last flips and moves shape them in space), on the input surface.
+// kind's metric along tubes, the last flips and moves shape them in space; where the metric itself
+// is stretched, they turn its caps in space into needles), on the input surface.
 //
 // Passes of: splitting edges longer than sqrt 2 in the metric (the new point projected onto
 // the input), collapsing edges shorter than 1/sqrt 2 (when the topology stays the same and no

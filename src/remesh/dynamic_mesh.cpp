@@ -2,10 +2,12 @@
 
 #include "mesh/connectivity.h"
 #include "mesh/error.h"
+#include "mesh/geometry.h"
 #include "sizing/metric.h"
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace vesselmesh::remesh {
 
@@ -110,8 +112,12 @@ double DynamicMesh::quality(const Triangle& f) const {
     const Sym3 unit{{1.0, 0.0, 0.0, 1.0, 0.0, 1.0}};
     return sizing::triangle_quality(position[f[0]], position[f[1]], position[f[2]], unit, unit, unit);
   }
-  return sizing::triangle_quality(position[f[0]], position[f[1]], position[f[2]], metric[f[0]], metric[f[1]],
-                                  metric[f[2]]);
+  const double q = sizing::triangle_quality(position[f[0]], position[f[1]], position[f[2]], metric[f[0]],
+                                            metric[f[1]], metric[f[2]]);
+  if (caps_from <= 0.0) return q;
+  const auto angles = mesh::triangle_angles(position[f[0]], position[f[1]], position[f[2]]);
+  const double largest = *std::max_element(angles.begin(), angles.end());
+  return largest <= caps_from ? q : q * std::max(0.0, (std::numbers::pi - largest) / (std::numbers::pi - caps_from));
 }
 
 TriMesh DynamicMesh::to_trimesh(std::vector<Sym3>* metrics, std::vector<int>* hints) const {

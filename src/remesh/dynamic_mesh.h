@@ -59,6 +59,11 @@ class DynamicMesh {
   // flips and moves on an isotropic kind whose bound stretched it along tubes, Remesher::run).
   double quality(const Triangle& f) const;
   bool shapes_in_space = false;
+  // Radians: from this largest angle in space on, a triangle's quality falls linearly with it, to 0
+  // when it is flat (0: not at all). Set for the last flips and moves where the metric is stretched
+  // (Remesher::run): there an equilateral triangle of the metric with an edge along the stretch is
+  // a cap in space.
+  double caps_from = 0.0;
 
   // The surface: triangles, labels, and the metric per point (dead entries dropped).
   // With `hints`, each output point's input triangle (for local distance queries).
