@@ -29,12 +29,12 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
   return a + v * ab + w * ac;
 }
 
-std::array<double, 3> triangle_angles(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const std::array<const Vec3*, 3> p{&a, &b, &c};
+std::array<double, 3> triangle_angles(const TriMesh& m, int t) {
+  const Triangle& f = m.triangles[t];
   std::array<double, 3> angles{};
   for (int i = 0; i < 3; ++i) {
-    const Vec3 u = *p[(i + 1) % 3] - *p[i];
-    const Vec3 v = *p[(i + 2) % 3] - *p[i];
+    const Vec3 u = m.points[f[(i + 1) % 3]] - m.points[f[i]];
+    const Vec3 v = m.points[f[(i + 2) % 3]] - m.points[f[i]];
     const double nu = u.norm(), nv = v.norm();
     // atan2 of |u x v| and u.v is accurate for angles near 0 and pi, unlike acos.
     angles[i] = (nu == 0.0 || nv == 0.0) ? 0.0 : std::atan2(u.cross(v).norm(), u.dot(v));

@@ -27,11 +27,7 @@ inline Vec3 triangle_centroid(const TriMesh& m, int t) {
 Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
 // Interior angles at corners 0, 1, 2, in radians (0 for a corner with a zero-length edge).
-std::array<double, 3> triangle_angles(const Vec3& a, const Vec3& b, const Vec3& c);
-inline std::array<double, 3> triangle_angles(const TriMesh& m, int t) {
-  const Triangle& f = m.triangles[t];
-  return triangle_angles(m.points[f[0]], m.points[f[1]], m.points[f[2]]);
-}
+std::array<double, 3> triangle_angles(const TriMesh& m, int t);
 
 // Total area of all triangles.
 double surface_area(const TriMesh& m);

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <limits>
 #include <optional>
@@ -96,6 +97,8 @@ class Remesher {
   int collapse_pass(double shorter_than = kShort);
   int flip_pass();
   int move_pass();
+  void settle();
+  void judge_anew(const std::function<bool(const Triangle&)>& changed);
   bool too_far(const Triangle& f) const {
     const Stray s = stray(f);
     return s.distance > s.allowed;
@@ -438,6 +441,22 @@ int Remesher::flip_pass() {
   return done;
 }
 
+// Flips and moves until they stop (moves skip settled points), eight rounds at most.
+void Remesher::settle() {
+  for (int it = 0; it < 8; ++it)
+    if (flip_pass() + move_pass() == 0) break;
+}
+
+// The quality's measure changed for the live triangles `changed` picks (DynamicMesh::shapes_in_space:
+// all; caps_from: the caps): their quality computed anew, their points tried again by the moves.
+void Remesher::judge_anew(const std::function<bool(const Triangle&)>& changed) {
+  for (size_t t = 0; t < m_.triangles.size(); ++t) {
+    if (!m_.triangle_alive[t] || !changed(m_.triangles[t])) continue;
+    forget_quality(static_cast<int>(t));
+    for (int v : m_.triangles[t]) m_.dirty[v] = 1;
+  }
+}
+
 // Tries the points whose ball changed since their last try (a failed move stays failed).
 int Remesher::move_pass() {
   int done = 0;
@@ -575,8 +594,7 @@ void Remesher::run(const Reporter& reporter) {
     if (far == 0) break;
     adapt_passes(reporter, 0.5 + 0.1 * round, 0.6 + 0.1 * round);
   }
-  for (int it = 0; it < 8; ++it)  // until flips and moves stop (moves skip settled points)
-    if (flip_pass() + move_pass() == 0) break;
+  settle();
   if (bounded) {
     const int refined = bound_hausdorff();
     keep_bound_ = true;
@@ -585,27 +603,21 @@ void Remesher::run(const Reporter& reporter) {
     // before the stretch); judged in space now, within the bound and at the same count: 29.2.
     if (stretched_) {
       m_.shapes_in_space = true;
-      std::fill(quality_.begin(), quality_.end(), -1.0);
-      std::fill(m_.dirty.begin(), m_.dirty.end(), 1);
+      judge_anew([](const Triangle&) { return true; });
     }
-    for (int it = 0; (refined > 0 || stretched_) && it < 8; ++it)  // mend the shapes, within the bound
-      if (flip_pass() + move_pass() == 0) break;
+    if (refined > 0 || stretched_) settle();  // mend the shapes, within the bound
     // A split point projected next to another leaves a sliver no flip or move mends (an edge of
     // 0.005 mm among 0.4 mm ones, quality 0.03, on the capped SimVascular aorta while strays were
     // measured to the closest facet's patch alone): collapsed where the bound and the shapes allow.
-    if (refined > 0 && collapse_pass(kSliver) > 0)
-      for (int it = 0; it < 8; ++it)
-        if (flip_pass() + move_pass() == 0) break;
+    if (refined > 0 && collapse_pass(kSliver) > 0) settle();
   }
   // A stretched metric's caps (kCapDegrees), judged worse now, at the same count: flipped into
   // needles, their points moved (within the bound). Judged so from the start, the count's loop no
   // longer converges (the capped segmentation at 20,000: 18,970 next to 21,794).
   if (anisotropic_) {
     m_.caps_from = kCapDegrees * std::numbers::pi / 180.0;
-    std::fill(quality_.begin(), quality_.end(), -1.0);
-    std::fill(m_.dirty.begin(), m_.dirty.end(), 1);
-    for (int it = 0; it < 8; ++it)
-      if (flip_pass() + move_pass() == 0) break;
+    judge_anew([&](const Triangle& f) { return m_.largest_angle(f) > m_.caps_from; });
+    settle();
   }
   reporter.progress("remeshing", 1.0);
 }

@@ -2,7 +2,6 @@
 
 #include "mesh/connectivity.h"
 #include "mesh/error.h"
-#include "mesh/geometry.h"
 #include "sizing/metric.h"
 
 #include <algorithm>
@@ -115,9 +114,19 @@ double DynamicMesh::quality(const Triangle& f) const {
   const double q = sizing::triangle_quality(position[f[0]], position[f[1]], position[f[2]], metric[f[0]],
                                             metric[f[1]], metric[f[2]]);
   if (caps_from <= 0.0) return q;
-  const auto angles = mesh::triangle_angles(position[f[0]], position[f[1]], position[f[2]]);
-  const double largest = *std::max_element(angles.begin(), angles.end());
+  const double largest = largest_angle(f);
   return largest <= caps_from ? q : q * std::max(0.0, (std::numbers::pi - largest) / (std::numbers::pi - caps_from));
+}
+
+// The angle opposite the longest edge, by the law of cosines (clamped: a flat triangle gives pi).
+double DynamicMesh::largest_angle(const Triangle& f) const {
+  const std::array<double, 3> side{(position[f[1]] - position[f[2]]).squaredNorm(),
+                                   (position[f[2]] - position[f[0]]).squaredNorm(),
+                                   (position[f[0]] - position[f[1]]).squaredNorm()};
+  const int i = static_cast<int>(std::max_element(side.begin(), side.end()) - side.begin());
+  const double a = side[(i + 1) % 3], b = side[(i + 2) % 3];
+  if (!(a > 0.0 && b > 0.0)) return 0.0;
+  return std::acos(std::clamp((a + b - side[i]) / (2.0 * std::sqrt(a * b)), -1.0, 1.0));
 }
 
 TriMesh DynamicMesh::to_trimesh(std::vector<Sym3>* metrics, std::vector<int>* hints) const {

@@ -64,6 +64,7 @@ class DynamicMesh {
   // (Remesher::run): there an equilateral triangle of the metric with an edge along the stretch is
   // a cap in space.
   double caps_from = 0.0;
+  double largest_angle(const Triangle& f) const;  // radians, in space
 
   // The surface: triangles, labels, and the metric per point (dead entries dropped).
   // With `hints`, each output point's input triangle (for local distance queries).
