@@ -7,6 +7,7 @@
 #include "io/vtk_formats.h"
 #include "mesh/error.h"
 #include "mesh/geometry.h"
+#include "post/fluid_metric.h"
 #include "volume/quality.h"
 #include "volume/volume_mesh.h"
 
@@ -104,6 +105,9 @@ struct VolumeCommandOptions {
   std::string output, algorithm = "delaunay", end_names;
   std::vector<std::string> ends;
   std::vector<std::string> refine;
+  std::string flow;
+  std::vector<double> flow_times;
+  double error_norm = 2.0;
   volume::VolumeOptions volume;
   int target_points = 0;
   CommonOptions common;
@@ -129,6 +133,20 @@ int run_volume(const VolumeCommandOptions& o) {
                                    "an outlet; cut the vessel's ends open",
                                    o.surface.path));
     volume::check_interior_size_options(options.interior);
+    if (o.flow.empty() && (!o.flow_times.empty() || o.error_norm != 2.0))
+      throw OptionError("--flow-time and --error-norm go with --flow");
+    int target_points = o.target_points;
+    Json flow_json = nullptr;
+    if (!o.flow.empty()) {  // the interior's sizes from the flow's velocity (issue 52), at the flow mesh's count
+      post::FluidSizes sizes = post::fluid_error_sizes(o.flow, o.flow_times, options.interior.gradation,
+                                                       {.p = o.error_norm}, reporter);
+      if (target_points == 0) target_points = sizes.mesh.num_points();
+      const auto [low, high] = std::minmax_element(sizes.sizes.begin(), sizes.sizes.end());
+      flow_json = {{"folder", o.flow}, {"times_s", sizes.times}, {"error_norm", o.error_norm},
+                   {"flow_mesh_points", sizes.mesh.num_points()},
+                   {"size_mm", {{"min", round_to(*low, 5)}, {"max", round_to(*high, 5)}}}};
+      options.interior.flow = post::size_function(std::move(sizes));
+    }
     // The layer's thickness and the interior's core bound follow the local radius: the
     // distance map (without a layer, a surface whose centerlines cannot be traced is
     // filled without the core bound, said).
@@ -141,8 +159,8 @@ int run_volume(const VolumeCommandOptions& o) {
                                    e.what()));
     }
     const volume::VolumeResult result =
-        o.target_points > 0 ? volume::build_volume_with_points(wall, surface.ends, radius, options,
-                                                                o.target_points, 0.02, reporter)
+        target_points > 0 ? volume::build_volume_with_points(wall, surface.ends, radius, options,
+                                                              target_points, 0.02, reporter)
                              : volume::build_volume(wall, surface.ends, radius, options, reporter);
     io::write_volume(o.output, result.mesh, {Field::scalar("radius", result.radius)});
     const volume::VolumeQuality q = volume::measure_volume(result.mesh, result.radius);
@@ -171,6 +189,7 @@ int run_volume(const VolumeCommandOptions& o) {
                                {"gradation", options.interior.gradation},
                                {"core_fraction", options.interior.core_fraction},
                                {"refine", o.refine},
+                               {"flow", flow_json},
                                {"at_wall_mm", {{"min", round_to(r.interior_size_min, 5)},
                                                {"median", round_to(r.interior_size_median, 5)},
                                                {"max", round_to(r.interior_size_max, 5)}}}};
@@ -270,6 +289,21 @@ Command add_volume_command(CLI::App& parent) {
                   "layer and the wall kept, only the interior's count moves; at most four builds); the factor used is "
                   "printed and in --json (interior_size.factor). For comparing meshes of equal volume counts")
       ->check(CLI::PositiveNumber);
+  app->add_option("--flow", o->flow,
+                  "A 'vesselmesh simulate' output folder (with fluid frames: its case's output.fluid_every) on a first "
+                  "mesh of this vessel: the interior is sized where the velocity's linear interpolation error asks "
+                  "(its Hessians recovered over the flow's mesh, bounded together over --flow-time, graded by "
+                  "--interior-gradation) in place of the core bound, the wall's growth inward kept; the volume gets "
+                  "the flow mesh's point count unless --target-points says otherwise (the flow-adapted kind, the "
+                  "surface from 'vesselmesh remesh --size flow')");
+  app->add_option("--flow-time", o->flow_times,
+                  "--flow: the times (s) whose velocity to bound (repeat; default: every saved fluid frame of the last "
+                  "period, or the last frame of a steady flow)");
+  app->add_option("--error-norm", o->error_norm,
+                  "--flow: p of the L^p norm of the velocity's interpolation error that the sizes make least for the "
+                  "count (larger: closer to bounding the largest error)")
+      ->check(CLI::Range(1.0, 1e6))
+      ->capture_default_str();
   app->add_option("--sliver-angle", o->volume.sliver_angle_deg,
                   "Interior tetrahedra with a dihedral angle under this (degrees) are improved after the fill by flips, "
                   "moves of inside points and insertions (the boundary is kept); 0: the fill as it comes")

@@ -18,13 +18,7 @@ WallMetric wall_error_metric(const std::string& flow_directory, const std::vecto
     throw InputError(fmt::format("{}: the flow saved no wall frame", flow_directory));
   WallMetric out;
   // The frames, read one at a time: a cycle's frames of a large wall do not all fit at once.
-  std::vector<const WallFrame*> saved;
-  if (times.empty()) {
-    const double last = series.frames.back().time;
-    const double from = series.period > 0.0 ? last - series.period : last;
-    for (const WallFrame& f : series.frames)
-      if (f.time >= from - 1e-9 * std::max(1.0, std::abs(from))) saved.push_back(&f);
-  }
+  const std::vector<const WallFrame*> saved = times.empty() ? last_period_frames(series) : std::vector<const WallFrame*>{};
   const size_t count = times.empty() ? saved.size() : times.size();
   std::vector<std::vector<double>> fields;
   for (size_t i = 0; i < count; ++i) {

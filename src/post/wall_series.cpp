@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <regex>
 
@@ -79,6 +81,16 @@ FramePair frames_around(const WallSeries& series, double time) {
   if (std::abs(frames[k].time - time) <= tolerance || k + 1 == frames.size()) return {k, k, 0.0};
   if (std::abs(frames[k + 1].time - time) <= tolerance) return {k + 1, k + 1, 0.0};
   return {k, k + 1, (time - frames[k].time) / (frames[k + 1].time - frames[k].time)};
+}
+
+std::vector<const WallFrame*> last_period_frames(const WallSeries& series) {
+  std::vector<const WallFrame*> out;
+  if (series.frames.empty()) return out;
+  const double last = series.frames.back().time;
+  const double from = series.period > 0.0 ? last - series.period : last;
+  for (const WallFrame& f : series.frames)
+    if (f.time >= from - 1e-9 * std::max(1.0, std::abs(from))) out.push_back(&f);
+  return out;
 }
 
 WallField wall_at_time(const WallSeries& series, double time) {

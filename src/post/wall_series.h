@@ -43,6 +43,10 @@ struct FramePair {
 };
 FramePair frames_around(const WallSeries& series, double time);
 
+// The saved frames of the series' last period where its flow has one (`period`), else the last
+// frame alone: what a metric bounds by default (wall_metric.h, fluid_metric.h).
+std::vector<const WallFrame*> last_period_frames(const WallSeries& series);
+
 // Linear in time between the two saved frames around `time`; InputError when `time` lies
 // outside the saved span (the message gives it).
 WallField wall_at_time(const WallSeries& series, double time);

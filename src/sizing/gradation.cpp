@@ -6,7 +6,11 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
+#include <queue>
+#include <utility>
 
 namespace vesselmesh::sizing {
 namespace {
@@ -65,6 +69,33 @@ int grade_metrics(const TriMesh& mesh, std::vector<Sym3>& metrics, double growth
     metrics[to] = intersect(metrics[to], spread);
     return true;
   });
+}
+
+int grade_sizes(const std::vector<Vec3>& points, const mesh::PointGraph& graph, std::vector<double>& sizes,
+                double growth) {
+  VM_CHECK(sizes.size() == points.size() && graph.start.size() == points.size() + 1,
+           "grade_sizes: one size and one graph row per point");
+  if (!(growth > 1.0)) return 0;
+  const double slope = std::log(growth);
+  using Entry = std::pair<double, int>;  // (size, point): the least first, then the least index
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+  for (int v = 0; v < static_cast<int>(sizes.size()); ++v) queue.emplace(sizes[v], v);
+  std::vector<char> settled(sizes.size(), 0), lowered(sizes.size(), 0);
+  while (!queue.empty()) {
+    const auto [size, v] = queue.top();
+    queue.pop();
+    if (settled[v] || size > sizes[v]) continue;
+    settled[v] = 1;
+    for (int k = graph.start[v]; k < graph.start[v + 1]; ++k) {
+      const int q = graph.next[k];
+      const double limit = size + slope * (points[q] - points[v]).norm();
+      if (settled[q] || !(limit < sizes[q])) continue;
+      sizes[q] = limit;
+      lowered[q] = 1;
+      queue.emplace(limit, q);
+    }
+  }
+  return static_cast<int>(std::count(lowered.begin(), lowered.end(), 1));
 }
 
 }  // namespace vesselmesh::sizing

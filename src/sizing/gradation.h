@@ -8,6 +8,7 @@
 // Passes over the edges in index order until nothing changes: deterministic.
 #pragma once
 
+#include "mesh/point_graph.h"
 #include "mesh/sym3.h"
 #include "mesh/trimesh.h"
 
@@ -18,5 +19,12 @@ namespace vesselmesh::sizing {
 // In place; returns the number of passes made. `growth` <= 1 leaves the field as it is.
 int grade_sizes(const TriMesh& mesh, std::vector<double>& sizes, double growth);
 int grade_metrics(const TriMesh& mesh, std::vector<Sym3>& metrics, double growth);
+
+// Isotropic sizes over a volume's point graph (the flow kind's interior): afterwards
+// h_j <= h_i + |x_j - x_i| ln g along every edge, each size the least over all paths of
+// h_i + (path length) ln g, found at once by Dijkstra's method from every point (a point settled
+// once: no pass cap). Ties go by point index: deterministic. Returns the number of sizes lowered.
+int grade_sizes(const std::vector<Vec3>& points, const mesh::PointGraph& graph, std::vector<double>& sizes,
+                double growth);
 
 }  // namespace vesselmesh::sizing

@@ -194,4 +194,137 @@ std::vector<Sym3> error_metric(const TriMesh& mesh, const std::vector<std::vecto
   return out;
 }
 
+namespace {
+
+constexpr int kVolumeCoefficients = 10;  // a full quadratic in 3D
+
+// Point v's 2-ring in `graph` (v left out), in the order found; `stamp` is all -1 on entry and on exit.
+void volume_ring(const mesh::PointGraph& graph, int v, std::vector<int>& stamp, std::vector<int>& ring) {
+  ring.clear();
+  stamp[v] = v;
+  for (int k = graph.start[v]; k < graph.start[v + 1]; ++k) {
+    const int q = graph.next[k];
+    if (stamp[q] != v) stamp[q] = v, ring.push_back(q);
+  }
+  const size_t first = ring.size();
+  for (size_t i = 0; i < first; ++i)
+    for (int k = graph.start[ring[i]]; k < graph.start[ring[i] + 1]; ++k) {
+      const int q = graph.next[k];
+      if (stamp[q] != v) stamp[q] = v, ring.push_back(q);
+    }
+  for (int q : ring) stamp[q] = -1;
+  stamp[v] = -1;
+}
+
+// The Hessians at point v of every field (columns of `values`: the fields at the point, then at its
+// ring), from the least-squares quadratic; false where the fit is ill-posed.
+bool fit_volume(const std::vector<Vec3>& points, int v, const std::vector<int>& ring,
+                const Eigen::MatrixXd& values, std::vector<Eigen::Matrix3d>& out) {
+  const int rows = static_cast<int>(ring.size()) + 1;
+  if (rows < kVolumeCoefficients) return false;
+  double scale2 = 0.0;
+  for (int q : ring) scale2 += (points[q] - points[v]).squaredNorm();
+  const double scale = std::sqrt(scale2 / ring.size());
+  if (!(scale > 0.0)) return false;
+  Eigen::MatrixXd a(rows, kVolumeCoefficients);
+  for (int i = 0; i < rows; ++i) {
+    const Vec3 d = (points[i == 0 ? v : ring[i - 1]] - points[v]) / scale;
+    a.row(i) << 1.0, d.x(), d.y(), d.z(), d.x() * d.x(), d.y() * d.y(), d.z() * d.z(), d.x() * d.y(),
+        d.x() * d.z(), d.y() * d.z();
+  }
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
+  if (qr.rank() < kVolumeCoefficients) return false;
+  const Eigen::MatrixXd c = qr.solve(values) / (scale * scale);
+  out.resize(values.cols());
+  for (Eigen::Index f = 0; f < values.cols(); ++f) {
+    const auto k = c.col(f);
+    out[f] << 2.0 * k[4], k[7], k[8], k[7], 2.0 * k[5], k[9], k[8], k[9], 2.0 * k[6];
+  }
+  return true;
+}
+
+// Per point, `use(v, hessians)` with every field's Hessian there (not called where the fit is
+// ill-posed); on threads, each point once.
+template <typename Use>
+void for_volume_hessians(const std::vector<Vec3>& points, const mesh::PointGraph& graph,
+                         const std::vector<const std::vector<double>*>& fields, Use use) {
+  const int np = static_cast<int>(points.size());
+  VM_CHECK(static_cast<int>(graph.start.size()) == np + 1, "recovering Hessians: one graph row per point");
+  tbb::enumerable_thread_specific<std::vector<int>> stamps([np] { return std::vector<int>(np, -1); });
+  tbb::parallel_for(tbb::blocked_range<int>(0, np, 256), [&](const tbb::blocked_range<int>& r) {
+    std::vector<int>& stamp = stamps.local();
+    std::vector<int> ring;
+    std::vector<Eigen::Matrix3d> h;
+    Eigen::MatrixXd values;
+    for (int v = r.begin(); v < r.end(); ++v) {
+      volume_ring(graph, v, stamp, ring);
+      values.resize(static_cast<Eigen::Index>(ring.size()) + 1, static_cast<Eigen::Index>(fields.size()));
+      for (size_t f = 0; f < fields.size(); ++f) {
+        values(0, f) = (*fields[f])[v];
+        for (size_t i = 0; i < ring.size(); ++i) values(i + 1, f) = (*fields[f])[ring[i]];
+      }
+      if (fit_volume(points, v, ring, values, h)) use(v, h);
+    }
+  });
+}
+
+}  // namespace
+
+std::vector<Sym3> recover_volume_hessians(const std::vector<Vec3>& points, const mesh::PointGraph& graph,
+                                          const std::vector<double>& field) {
+  VM_CHECK(field.size() == points.size(), "recover_volume_hessians: one value per point");
+  std::vector<Sym3> out(points.size());
+  for_volume_hessians(points, graph, {&field},
+                      [&](int v, const std::vector<Eigen::Matrix3d>& h) { out[v] = Sym3::from_matrix(h[0]); });
+  return out;
+}
+
+std::vector<double> volume_error_sizes(const std::vector<Vec3>& points, const mesh::PointGraph& graph,
+                                       const std::vector<std::vector<double>>& fields,
+                                       const ErrorMetricOptions& options, const Reporter& reporter) {
+  if (!(options.p >= 1.0))
+    throw OptionError(fmt::format("the error's norm p must be at least 1, not {}", options.p));
+  if (!(options.floor > 0.0 && options.floor < 1.0))
+    throw OptionError(fmt::format("the metric's floor must lie in (0, 1), not {}", options.floor));
+  const int np = static_cast<int>(points.size());
+  const auto box = mesh::bounding_box(points);
+  const double extent2 = (box[1] - box[0]).squaredNorm();
+  // The fields that are linear to round-off (second derivatives that change the field by under 1e-9
+  // of its range across the mesh) are told apart after the fit, by each field's largest |H|.
+  std::vector<const std::vector<double>*> used;
+  for (const std::vector<double>& f : fields) {
+    if (static_cast<int>(f.size()) != np)
+      throw InputError(fmt::format("a field has {} values for {} points", f.size(), np));
+    used.push_back(&f);
+  }
+  reporter.progress("recovering the fields' Hessians in the volume", 0.0);
+  std::vector<std::vector<double>> rho(fields.size(), std::vector<double>(np, 0.0));
+  for_volume_hessians(points, graph, used, [&](int v, const std::vector<Eigen::Matrix3d>& h) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    for (size_t f = 0; f < h.size(); ++f) {
+      eig.computeDirect(h[f], Eigen::EigenvaluesOnly);
+      rho[f][v] = eig.eigenvalues().cwiseAbs().maxCoeff();
+    }
+  });
+  reporter.progress("recovering the fields' Hessians in the volume", 1.0);
+  std::vector<double> largest_rho(np, 0.0);
+  double largest = 0.0;
+  for (size_t f = 0; f < fields.size(); ++f) {
+    const double own = *std::max_element(rho[f].begin(), rho[f].end());
+    const auto [low, high] = std::minmax_element(fields[f].begin(), fields[f].end());
+    // (against the values' size too: a constant field's fit leaves round-off)
+    if (!(own * extent2 > 1e-9 * std::max({*high - *low, std::abs(*low), std::abs(*high)}))) continue;
+    largest = std::max(largest, own);
+    for (int v = 0; v < np; ++v) largest_rho[v] = std::max(largest_rho[v], rho[f][v]);
+  }
+  if (!(largest > 0.0))
+    throw InputError(
+        "the fields are linear everywhere in the volume (their recovered second derivatives are zero): there is "
+        "nothing to adapt to");
+  const double exponent = std::isfinite(options.p) ? -options.p / (2.0 * options.p + 3.0) : -0.5;
+  std::vector<double> out(np);
+  for (int v = 0; v < np; ++v) out[v] = std::pow(std::max(largest_rho[v], options.floor * largest), exponent);
+  return out;
+}
+
 }  // namespace vesselmesh::sizing

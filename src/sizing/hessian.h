@@ -19,6 +19,7 @@
 // the ratios matter once the count sets the scale.
 #pragma once
 
+#include "mesh/point_graph.h"
 #include "mesh/reporter.h"
 #include "mesh/sym3.h"
 #include "mesh/trimesh.h"
@@ -49,5 +50,26 @@ std::vector<Sym3> error_metric(const TriMesh& mesh, const std::vector<std::vecto
                                const std::vector<Vec3>& normals,
                                const ErrorMetricOptions& options = {},
                                const Reporter& reporter = silent_reporter());
+
+// The volume's counterpart (the flow kind's interior, issue 52). Per point of a volume mesh the
+// Hessian of each field recovered by a least-squares fit of a full quadratic in 3D (10
+// coefficients) to the field at the point and at its 2-ring in `graph` (exact for a quadratic
+// whatever the cells; zero where the fit is ill-posed: fewer than 10 points or a degenerate
+// spread). Then the isotropic sizes that make the L^p norm of the fields' P1 interpolation error
+// over the volume least for a given number of points: the error on a cell of size h goes as
+// rho h^2, rho the largest |eigenvalue| of any field's Hessian there, and with the count as the
+// integral of h^-3 the optimum is h = rho^(-p / (2 p + 3)) (p infinite: rho^(-1/2), the error
+// spread evenly), up to the constant that sets the count. rho is floored at `floor` times the
+// largest anywhere (a field linear somewhere asks no size there). Units: the mesh's length to the
+// power 2p / (2p + 3) times the fields' unit; only the ratios matter once the count sets the
+// scale. InputError when every field is linear everywhere, or a field's size is not the points'.
+std::vector<double> volume_error_sizes(const std::vector<Vec3>& points, const mesh::PointGraph& graph,
+                                       const std::vector<std::vector<double>>& fields,
+                                       const ErrorMetricOptions& options = {},
+                                       const Reporter& reporter = silent_reporter());
+
+// The recovered Hessian of one field at every point (as volume_error_sizes fits it).
+std::vector<Sym3> recover_volume_hessians(const std::vector<Vec3>& points, const mesh::PointGraph& graph,
+                                          const std::vector<double>& field);
 
 }  // namespace vesselmesh::sizing

@@ -17,6 +17,7 @@
 #include "mesh/clean.h"
 #include "mesh/error.h"
 #include "mesh/locator.h"
+#include "post/fluid_metric.h"
 #include "post/wall_metric.h"
 #include "post/wall_series.h"
 #include "remesh/adapt.h"
@@ -368,7 +369,7 @@ Envelope make_envelope(const TriMesh& surface, const std::vector<MeshRun>& made,
 volume::VolumeResult make_volume(const TriMesh& wall, const StudyConfig& config, const LevelLayers& layer_design,
                                  const volume::InteriorSizeOptions& interior,
                                  const std::vector<volume::EndAt>& end_at, int volume_points,
-                                 const std::string& name, const Reporter& reporter) {
+                                 const std::string& name, const std::string& flow_dir, const Reporter& reporter) {
   const centerline::DistanceMap wall_distance =
       centerline::distance_map(wall, centerline::extract(wall, {}, reporter));
   volume::VolumeOptions vo;
@@ -379,6 +380,9 @@ volume::VolumeResult make_volume(const TriMesh& wall, const StudyConfig& config,
   vo.layer.split_angle_deg = config.layer_split_angle;
   vo.algorithm = volume::parse_fill_algorithm(config.algorithm);
   vo.interior = interior;
+  if (!flow_dir.empty())  // the flow kind: its interior sized by the velocity's error (post/fluid_metric.h)
+    vo.interior.flow =
+        post::size_function(post::fluid_error_sizes(flow_dir, {}, interior.gradation, {}, reporter));
   vo.inlet = config.inlet;
   vo.end_names = config.end_names;
   vo.end_at = end_at;
@@ -758,7 +762,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
     const MeshRun* source = kind == sizing::SizeKind::flow ? &flow_source(result.meshes) : nullptr;
     if (source) run.adapted_from = source->name;
     if (source)
-      what += fmt::format("flow from {} {}\n", source->name,
+      what += fmt::format("flow from {} {} (wall and interior)\n", source->name,
                           fingerprint(io::read_file(source->folder + "/stamp.json")));
     const std::string mesh_key = fingerprint(common + what);
     const std::string flow_key = fingerprint(mesh_key + case_text);
@@ -795,7 +799,8 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       reporter.info(fmt::format("study: {}: volume mesh", name));
       step = Clock::now();
       const volume::VolumeResult volume_mesh =
-          make_volume(remeshed.mesh, config, layer_design, interior, end_at, volume_points, name, reporter);
+          make_volume(remeshed.mesh, config, layer_design, interior, end_at, volume_points, name,
+                      source ? source->folder + "/flow" : std::string(), reporter);
       io::write_msh(volume_file, volume_mesh.mesh);
       const volume::VolumeQuality quality = volume::measure_volume(volume_mesh.mesh, volume_mesh.radius);
       run.seconds["volume"] = since(step);

@@ -25,8 +25,9 @@
 //   triangles = 8000           # the four meshes' surface triangles
 //   meshes = ["uniform", "distance", "curvature", "anisotropic"] (and "flow": adapted to the WSS of
 //               the flow on the curvature mesh, or on the first mesh listed, which must come before it:
-//               sizing/size_field.h's flow kind over its last period's saved frames, issue 52; its cost
-//               in the summary counts that flow too)
+//               sizing/size_field.h's flow kind over its last period's saved frames, issue 52, and
+//               its interior to the velocity's error there, post/fluid_metric.h; its cost in the
+//               summary counts that flow too)
 //   [reference] kind = "envelope" (or "uniform"), levels = 3, factor = 1.33 (envelope: each level
 //               that many times finer in h than the one before, level 1 the finest compared mesh
 //               at every point / 1.1: 1.33^3 = 2.35 times the volume nodes a level, the reference

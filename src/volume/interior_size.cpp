@@ -85,12 +85,14 @@ double InteriorSize::at(const Vec3& x) const {
   r /= sum;
   t /= sum;
   double size = h + slope_ * std::max(0.0, hit.distance - t);
-  if (!radius_.empty()) size = std::min(size, std::max(h, options_.core_fraction * r));
+  const double flow = options_.flow ? options_.flow(x) : 0.0;
+  if (flow > 0.0) size = std::min(size, flow);
+  else if (!radius_.empty()) size = std::min(size, std::max(h, options_.core_fraction * r));
   for (const RefineRegion& region : options_.regions) {
     const Vec3 axis = region.to - region.from;
     const double length2 = axis.squaredNorm();
-    const double t = length2 > 0.0 ? std::clamp((x - region.from).dot(axis) / length2, 0.0, 1.0) : 0.0;
-    const double outside = std::max(0.0, (x - (region.from + t * axis)).norm() - region.radius);
+    const double along = length2 > 0.0 ? std::clamp((x - region.from).dot(axis) / length2, 0.0, 1.0) : 0.0;
+    const double outside = std::max(0.0, (x - (region.from + along * axis)).norm() - region.radius);
     size = std::min(size, region.size + slope_ * outside);
   }
   return options_.factor * size;

@@ -14,7 +14,10 @@
 // the growth per unit length of the surface's gradation (sizing/gradation.h: h_j <= h_i + |e| ln g),
 // and the core of a vessel coarsening to at most core_fraction of the local radius (never finer
 // than the wall's own size). Without radii (none given) the core bound is left out. Finer regions
-// (RefineRegion) bound it further, graded outward from each.
+// (RefineRegion) bound it further, graded outward from each. Where a flow's sizes are given (the
+// flow kind: post/fluid_metric.h), they take the core bound's place wherever they have a size:
+//   size(x) = factor * min(h(c) + d ln g, flow(x)),
+// so that the wall's growth inward still meets the layer, and the flow sets the rest.
 // Every fill engine is given this field (volume/fill.h), so the engine changes the tetrahedra's
 // shape, not their number. Queries are const and thread-safe once built.
 #pragma once
@@ -22,6 +25,7 @@
 #include "mesh/locator.h"
 #include "mesh/trimesh.h"
 
+#include <functional>
 #include <vector>
 
 namespace vesselmesh::volume {
@@ -47,6 +51,9 @@ struct InteriorSizeOptions {
   double core_fraction = 0.1;
   // Finer regions: the size at x at most region.size + ln(g) * (its distance outside the region).
   std::vector<RefineRegion> regions = {};
+  // The flow's sizes at a point (mesh units; 0 or less where it has none, as outside its mesh), or
+  // empty for none; called concurrently.
+  std::function<double(const Vec3&)> flow = {};
 };
 
 // OptionError for a factor <= 0, a gradation < 1, a core fraction <= 0, or a region of radius or size

@@ -287,9 +287,12 @@ VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::Op
     report.interior_size_median = at_wall[n / 2];
     report.interior_size_max = at_wall.back();
     reporter.info(fmt::format("interior sizes: {:.3g} mm at the wall (least {:.3g}, largest {:.3g}; x{:g}), growing "
-                              "inward by {:g} to at most {:g} of the local radius",
+                              "inward by {:g} to at most {}",
                               report.interior_size_median, report.interior_size_min, report.interior_size_max,
-                              options.interior.factor, options.interior.gradation, options.interior.core_fraction));
+                              options.interior.factor, options.interior.gradation,
+                              options.interior.flow ? std::string("the flow's sizes")
+                                                    : fmt::format("{:g} of the local radius",
+                                                                  options.interior.core_fraction)));
   }
   FillResult fill = fill_tetrahedra(points, closed, options.algorithm, options.threads, reporter,
                                     [&interior_size](const Vec3& x) { return interior_size.at(x); });

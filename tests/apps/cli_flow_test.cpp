@@ -3,6 +3,7 @@
 #include "flow/case.h"
 #include "io/stl.h"
 #include "io/surface.h"
+#include "io/volume_file.h"
 #include "io/vtk_formats.h"
 #include "mesh/connectivity.h"
 #include "synth/shapes.h"
@@ -481,11 +482,22 @@ double density_between(const TriMesh& mesh, double z_low, double z_high) {
   return count / area;
 }
 
+// Points per mm^3 of a nozzle's volume mesh (axis z) between two axial positions and two radii.
+double volume_density(const TetMesh& mesh, double z_low, double z_high, double r_low, double r_high) {
+  int count = 0;
+  for (const Vec3& p : mesh.points) {
+    const double r = std::hypot(p.x(), p.y());
+    count += p.z() >= z_low && p.z() < z_high && r >= r_low && r < r_high;
+  }
+  return count / (std::numbers::pi * (r_high * r_high - r_low * r_low) * (z_high - z_low));
+}
+
 // The flow size field (issue 52): a nozzle (inlet pipe, cone, throat, sudden step, outlet pipe;
 // radii 2 and 1 mm) remeshed to a steady flow's WSS at Re 100 in the throat puts its triangles
 // where the WSS changes: the cone and the throat, not the pipes where the flow is Poiseuille's;
-// the same mesh twice; what it needs and what it refuses, in one line with exit 2.
-TEST(Cli, RemeshToAFlowsWssRefinesTheNozzlesThroat) {
+// its interior (volume --flow) goes where the velocity's error is: the jet past the step, not the
+// inlet pipe's core; the same meshes twice; what they need and refuse, in one line with exit 2.
+TEST(Cli, RemeshAndVolumeToAFlowRefineTheNozzlesThroatAndJet) {
   test::TemporaryFolder tmp;
   ASSERT_EQ(run({"synth", "nozzle", "--radius", "2", "--throat-radius", "1", "--throat-length", "4",
                  "--cone-half-angle", "20", "--inlet-length", "4", "--outlet-length", "12", "--resolution", "0.2",
@@ -528,12 +540,43 @@ TEST(Cli, RemeshToAFlowsWssRefinesTheNozzlesThroat) {
   ASSERT_EQ(adapt_to("again.vtp").code, 0);
   EXPECT_EQ(read_text(tmp.path("adapted.vtp")), read_text(tmp.path("again.vtp")));
 
+  // The interior: at the flow mesh's count, the jet (z 0 to 4 mm past the step, r < 1.3) finer than the
+  // geometric volume's on the same wall, the inlet pipe's core coarser.
+  const std::vector<std::string> volume = {"volume", tmp.path("wall.vtp"), "--flow", tmp.path("flow"), "--json",
+                                           "-q", "-o"};
+  auto volume_to = [&](const std::string& file) {
+    std::vector<std::string> args = volume;
+    args.push_back(tmp.path(file));
+    return run(args);
+  };
+  const RunResult interior = volume_to("f.msh");
+  ASSERT_EQ(interior.code, 0) << interior.err;
+  const Json vj = interior.json();
+  const int flow_points = vj["interior_size"]["flow"]["flow_mesh_points"].get<int>();
+  EXPECT_NEAR(vj["points"].get<double>(), flow_points, 0.02 * flow_points);
+  EXPECT_GT(vj["dihedral_deg"]["min_interior"].get<double>(), 10.0);
+  const TetMesh geometric = io::read_volume(tmp.path("n.msh")), adapted_volume = io::read_volume(tmp.path("f.msh"));
+  EXPECT_EQ(geometric.num_points(), flow_points);
+  const double jet = volume_density(adapted_volume, 0.0, 4.0, 0.0, 1.3);
+  const double inlet = volume_density(adapted_volume, -10.0, -7.5, 0.0, 1.5);
+  EXPECT_GT(jet, 1.15 * volume_density(geometric, 0.0, 4.0, 0.0, 1.3));          // measured 34.0 and 27.8 a mm^3
+  EXPECT_LT(inlet, 0.6 * volume_density(geometric, -10.0, -7.5, 0.0, 1.5));      // 4.6 and 11.8
+  EXPECT_GT(jet, 4.0 * inlet);
+  ASSERT_EQ(volume_to("f_again.msh").code, 0);
+  EXPECT_EQ(read_text(tmp.path("f.msh")), read_text(tmp.path("f_again.msh")));
+
   const auto refused = [&](std::vector<std::string> args, const std::string& part) {
     const RunResult r = run(args);
     EXPECT_EQ(r.code, 2) << r.err;
     EXPECT_NE(last_line(r.err).find(part), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(tmp.path("bad.vtp")));
+    EXPECT_FALSE(std::filesystem::exists(tmp.path("bad.msh")));
   };
+  refused({"volume", tmp.path("wall.vtp"), "--flow-time", "0", "-o", tmp.path("bad.msh")},
+          "--flow-time and --error-norm go with --flow");
+  refused({"volume", tmp.path("wall.vtp"), "--flow", tmp.path("n.msh"), "-o", tmp.path("bad.msh")}, "fluid.pvd");
+  refused({"volume", tmp.path("wall.vtp"), "--flow", tmp.path("flow"), "--flow-time", "2", "-o", tmp.path("bad.msh")},
+          "outside the saved results");
   refused({"remesh", tmp.path("n.stl"), "--size", "flow", "--flow", tmp.path("flow"), "-o", tmp.path("bad.vtp")},
           "--size flow needs --target-triangles");
   refused({"remesh", tmp.path("n.stl"), "--size", "curvature", "--flow", tmp.path("flow"), "-o", tmp.path("bad.vtp")},

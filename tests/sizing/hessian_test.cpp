@@ -1,11 +1,13 @@
 #include "sizing/hessian.h"
 
 #include "mesh/error.h"
+#include "mesh/point_graph.h"
 #include "synth/shapes.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -123,6 +125,76 @@ TEST(Hessian, ErrorMetricRefusesLinearFieldsAndBadOptions) {
   EXPECT_THROW(error_metric(mesh, {linear}, normals, {.p = 0.5}), OptionError);
   EXPECT_THROW(error_metric(mesh, {linear}, normals, {.floor = 0.0}), OptionError);
   EXPECT_THROW(error_metric(mesh, {{1.0, 2.0}}, normals), InputError);
+}
+
+// A box of Kuhn tetrahedra (6 x 5 x 4 cells of 0.2 by default), its inner points moved at random by
+// up to 0.3 of a cell: an irregular volume mesh and its point graph.
+struct IrregularBox {
+  TetMesh mesh;
+  mesh::PointGraph graph;
+  explicit IrregularBox(const std::array<int, 3>& cells = {6, 5, 4}, double cell = 0.2)
+      : mesh(test::kuhn_box(cells, cell * Vec3(cells[0], cells[1], cells[2]))) {
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> move(-0.3 * cell, 0.3 * cell);
+    for (Vec3& p : mesh.points) {
+      bool inner = true;
+      for (int k = 0; k < 3; ++k) inner = inner && p[k] > 1e-9 && p[k] < cell * cells[k] - 1e-9;
+      if (inner) p += Vec3(move(random), move(random), move(random));
+    }
+    graph = mesh::point_graph(mesh.num_points(), mesh.tets);
+  }
+  std::vector<double> sample(double (*f)(const Vec3&)) const {
+    std::vector<double> out;
+    for (const Vec3& p : mesh.points) out.push_back(f(p));
+    return out;
+  }
+};
+
+// The volume's fit (issue 52's flow interior) recovers a quadratic's Hessian to round-off at every
+// point, the box's faces and corners included.
+TEST(Hessian, VolumeFitExactForAQuadraticEvenAtTheBoxsCorners) {
+  const IrregularBox box;
+  const std::vector<double> f = box.sample([](const Vec3& p) {
+    return 1.0 + 2 * p.x() - p.y() + 3 * p.x() * p.x() - 2 * p.x() * p.y() + 0.5 * p.z() * p.z() + p.y() * p.z();
+  });
+  Eigen::Matrix3d expected;
+  expected << 6, -2, 0, -2, 0, 1, 0, 1, 1;
+  const std::vector<Sym3> h = recover_volume_hessians(box.mesh.points, box.graph, f);
+  ASSERT_EQ(h.size(), box.mesh.points.size());
+  for (size_t v = 0; v < h.size(); ++v) EXPECT_LT((h[v].matrix() - expected).cwiseAbs().maxCoeff(), 1e-8) << v;
+}
+
+// The sizes go as the largest |eigenvalue| to the power -p / (2 p + 3): for f = exp(2 x), whose
+// Hessian is 4 exp(2 x) e_x e_x, sizes from x = 0.4 to 0.8 (inside a box of cells of 0.1, 1.2 long)
+// fall by exp(0.8 p / (2 p + 3)) (the fit's error of a smooth field's second derivative within 2 %);
+// the finest of two fields bounds them; linear fields and bad options are refused.
+TEST(Hessian, VolumeErrorSizesFollowTheLpExponentAndBoundSeveralFields) {
+  const IrregularBox box({12, 6, 6}, 0.1);
+  const std::vector<double> f = box.sample([](const Vec3& p) { return std::exp(2.0 * p.x()); });
+  const auto size_at = [&](const std::vector<double>& sizes, double x) {  // mean over the inner points at x
+    double sum = 0.0;
+    int count = 0;
+    for (size_t v = 0; v < sizes.size(); ++v) {
+      const Vec3& p = box.mesh.points[v];
+      if (std::abs(p.x() - x) < 0.04 && p.y() > 0.15 && p.y() < 0.45 && p.z() > 0.15 && p.z() < 0.45)
+        sum += sizes[v], ++count;
+    }
+    return sum / count;
+  };
+  for (double p : {1.0, 2.0, double(INFINITY)}) {
+    const std::vector<double> h = volume_error_sizes(box.mesh.points, box.graph, {f}, {.p = p});
+    const double expected = std::exp(0.8 * (std::isfinite(p) ? p / (2 * p + 3) : 0.5));
+    EXPECT_NEAR(size_at(h, 0.4) / size_at(h, 0.8), expected, 0.02 * expected) << p;
+  }
+  // A second field of Hessian 200 e_z e_z everywhere is the finer below x = ln(50) / 2 = 1.96: all of the box.
+  const std::vector<double> g = box.sample([](const Vec3& p) { return 100.0 * p.z() * p.z(); });
+  const std::vector<double> both = volume_error_sizes(box.mesh.points, box.graph, {f, g}, {.p = INFINITY});
+  for (double x : {0.2, 0.6, 1.0}) EXPECT_NEAR(size_at(both, x), std::pow(200.0, -0.5), 1e-6) << x;
+  const std::vector<double> linear = box.sample([](const Vec3& p) { return 2 * p.x() - p.z(); });
+  EXPECT_THROW(volume_error_sizes(box.mesh.points, box.graph, {linear}), InputError);
+  EXPECT_THROW(volume_error_sizes(box.mesh.points, box.graph, {f}, {.p = 0.5}), OptionError);
+  EXPECT_THROW(volume_error_sizes(box.mesh.points, box.graph, {f}, {.floor = 0.0}), OptionError);
+  EXPECT_THROW(volume_error_sizes(box.mesh.points, box.graph, {{1.0, 2.0}}), InputError);
 }
 
 }  // namespace

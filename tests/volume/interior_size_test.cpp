@@ -28,15 +28,27 @@ TEST(InteriorSize, AreaEquivalentSizeIsTheEquilateralSide) {
   for (double h : area_equivalent_sizes(stretched)) EXPECT_NEAR(h, std::sqrt(3.0 * 0.5), 1e-12);
 }
 
-// A pipe of radius 2 with a uniform wall: the wall's size at the wall, growing by ln g per mm of
-// depth below the layer, up to the core bound; the factor scales it all.
-TEST(InteriorSize, CarriedInwardGradedAndBoundedByTheRadius) {
-  const double R = 2.0;
-  const TriMesh pipe = synth::cylinder({.radius = R, .length = 10.0, .resolution = 0.2});
-  const std::vector<double> radius(pipe.points.size(), R), layer(pipe.points.size(), 0.2);
-  const std::vector<double> wall = area_equivalent_sizes(pipe);
+// A pipe of radius R = 2, 10 long, with a uniform wall: its radius and a layer 0.2 thick at every
+// wall point, and the wall's mean area-equivalent size h.
+struct UniformPipe {
+  static constexpr double R = 2.0;
+  TriMesh pipe = synth::cylinder({.radius = R, .length = 10.0, .resolution = 0.2});
+  std::vector<double> radius = std::vector<double>(pipe.points.size(), R);
+  std::vector<double> layer = std::vector<double>(pipe.points.size(), 0.2);
   double h = 0.0;
-  for (double s : wall) h += s / wall.size();
+  UniformPipe() {
+    const std::vector<double> wall = area_equivalent_sizes(pipe);
+    for (double s : wall) h += s / wall.size();
+  }
+};
+
+// The wall's size at the wall, growing by ln g per mm of depth below the layer, up to the core
+// bound; the factor scales it all.
+TEST(InteriorSize, CarriedInwardGradedAndBoundedByTheRadius) {
+  const UniformPipe p;
+  const double R = p.R, h = p.h;
+  const TriMesh& pipe = p.pipe;
+  const std::vector<double>&radius = p.radius, &layer = p.layer;
   const InteriorSize field(pipe, radius, {.factor = 1.0, .gradation = 1.3, .core_fraction = 0.25}, layer);
   const Vec3 mid(0.0, 0.0, 5.0);
   EXPECT_NEAR(field.at(Vec3(R, 0, 5)), h, 0.05 * h);          // on the wall
@@ -54,6 +66,27 @@ TEST(InteriorSize, CarriedInwardGradedAndBoundedByTheRadius) {
   // A core fraction under the wall's size: never finer than the wall.
   const InteriorSize small_core(pipe, radius, {.factor = 1.0, .gradation = 1.3, .core_fraction = 0.01}, layer);
   EXPECT_NEAR(small_core.at(mid), h, 0.05 * h);
+}
+
+// A flow's sizes (the flow kind, issue 52) take the core bound's place where they have one: finer or
+// coarser than the core bound in the core, the wall's growth inward still bounding them near the
+// wall; where the flow has none (0: outside its mesh) the core bound is back; the factor scales them.
+TEST(InteriorSize, AFlowsSizesTakeTheCoreBoundsPlace) {
+  const UniformPipe p;
+  const double R = p.R, h = p.h;
+  const TriMesh& pipe = p.pipe;
+  const std::vector<double>&radius = p.radius, &layer = p.layer;
+  InteriorSizeOptions options{.factor = 1.0, .gradation = 2.0, .core_fraction = 0.25};
+  const Vec3 mid(0.0, 0.0, 5.0), near_wall(R - 0.3, 0, 5), outside(0.0, 0.0, 9.0);
+  options.flow = [](const Vec3& x) { return x.z() < 8.0 ? (x.x() > 0.5 ? 3.0 : 0.1) : 0.0; };
+  const InteriorSize field(pipe, radius, options, layer);
+  EXPECT_NEAR(field.at(mid), 0.1, 1e-12);  // finer than the core bound (0.5)
+  EXPECT_NEAR(field.at(near_wall), h + std::log(2.0) * 0.1, 0.05 * h);  // the wall's growth, not 3
+  // 1.25 mm below the layer: coarser than the core bound's 0.5 (about 1.07)
+  EXPECT_NEAR(field.at(Vec3(0.55, 0, 5)), h + std::log(2.0) * 1.25, 0.05 * h);
+  EXPECT_NEAR(field.at(outside), 0.25 * R, 1e-9);  // no flow size there: the core bound
+  options.factor = 1.5;
+  EXPECT_NEAR(InteriorSize(pipe, radius, options, layer).at(mid), 0.15, 1e-12);
 }
 
 // A finer region (volume --refine): inside the capsule its size, outside it growing by ln(g) a unit
