@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <memory>
 #include <cmath>
 #include <limits>
 
@@ -155,12 +156,29 @@ LevelLayers level_layers(int layers, double scale) {
 }
 
 volume::InteriorSizeOptions level_interior(const volume::InteriorSizeOptions& compared, double factor,
-                                           double scale) {
+                                           double scale, const std::function<double(const Vec3&)>& flow) {
   volume::InteriorSizeOptions o = compared;
   o.factor = factor;
   o.gradation = std::pow(compared.gradation, 1.0 / scale);
   o.core_fraction = compared.core_fraction / scale;
+  if (flow) {  // the field is factor x min(..., flow / (scale x factor)): the flow kinds' sizes / scale
+    o.flow = [flow, divisor = scale * factor](const Vec3& x) { return flow(x) / divisor; };
+    o.flow_keeps_core = true;
+  }
   return o;
+}
+
+std::function<double(const Vec3&)> least_flow_interior(std::vector<post::FluidSizes> sizes,
+                                                       const std::vector<double>& factors) {
+  VM_CHECK(sizes.size() == factors.size(), "least_flow_interior: a factor per flow");
+  std::vector<std::shared_ptr<const post::FluidSizeField>> fields;
+  for (post::FluidSizes& s : sizes) fields.push_back(std::make_shared<const post::FluidSizeField>(std::move(s)));
+  return [fields, factors](const Vec3& x) {
+    double least = 0.0;
+    for (size_t k = 0; k < fields.size(); ++k)
+      if (const double h = factors[k] * fields[k]->at(x); h > 0.0) least = least > 0.0 ? std::min(least, h) : h;
+    return least;
+  };
 }
 
 }  // namespace vesselmesh::study

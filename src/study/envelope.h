@@ -17,9 +17,11 @@
 #pragma once
 
 #include "mesh/trimesh.h"
+#include "post/fluid_metric.h"
 #include "remesh/adapt.h"
 #include "volume/interior_size.h"
 
+#include <functional>
 #include <vector>
 
 namespace vesselmesh::study {
@@ -110,8 +112,14 @@ double envelope_interior_factor(const TriMesh& input, const std::vector<const Tr
 // The interior's options of level k: `factor` (envelope_interior_factor), the growth g^(1/scale)
 // and the core fraction / scale, so that the whole field (volume/interior_size.h: factor x
 // min(h + d ln g, max(h, core R))) over a wall of sizes h / scale is the field over h divided by
-// scale.
+// scale. `flow` (least_flow_interior; empty: none): the compared flow kinds' interior sizes, which the
+// level's stay under by scale too, beside its core bound.
 volume::InteriorSizeOptions level_interior(const volume::InteriorSizeOptions& compared, double factor,
-                                           double scale);
+                                           double scale, const std::function<double(const Vec3&)>& flow = {});
+
+// The least at a point of the compared flow kinds' interiors, each its interior factor times its
+// flow's sizes (post/fluid_metric.h, as the flow kind's volume had them); 0 where none has a size.
+std::function<double(const Vec3&)> least_flow_interior(std::vector<post::FluidSizes> sizes,
+                                                       const std::vector<double>& factors);
 
 }  // namespace vesselmesh::study

@@ -341,12 +341,15 @@ void sample_wall(MeshRun& run, const StudyResult& result, const std::vector<post
 struct Envelope {
   std::vector<double> sizes;
   double interior_factor = 1.0;
+  std::function<double(const Vec3&)> flow;  // the flow kinds' interiors (envelope.h: least_flow_interior)
   std::string key;
 };
-Envelope make_envelope(const TriMesh& surface, const std::vector<MeshRun>& made, const Reporter& reporter) {
+Envelope make_envelope(const TriMesh& surface, const std::vector<MeshRun>& made, double gradation,
+                       const Reporter& reporter) {
   Envelope out;
   std::vector<TriMesh> walls;
-  std::vector<double> compared_factors;
+  std::vector<double> compared_factors, flow_factors;
+  std::vector<post::FluidSizes> flows;
   for (const MeshRun& done : made) {
     if (done.series) continue;
     const std::string wall_file = done.folder + "/surface.vtp";
@@ -354,7 +357,14 @@ Envelope make_envelope(const TriMesh& surface, const std::vector<MeshRun>& made,
     out.key += fmt::format("compared {} {} interior {}\n", done.name, fingerprint(io::read_file(wall_file)),
                            done.interior_size);
     compared_factors.push_back(done.interior_size);
+    if (done.adapted_from.empty()) continue;  // a flow kind: its interior as its volume had it
+    const std::string source = (fs::path(done.folder).parent_path() / done.adapted_from).string();
+    flows.push_back(post::fluid_error_sizes(source + "/flow", {}, gradation, {}, reporter));
+    flow_factors.push_back(done.interior_size);
+    out.key += fmt::format("its interior from {} {}\n", done.adapted_from,
+                           fingerprint(io::read_file(source + "/stamp.json")));
   }
+  if (!flows.empty()) out.flow = least_flow_interior(std::move(flows), flow_factors);
   std::vector<const TriMesh*> meshes;
   for (const TriMesh& w : walls) meshes.push_back(&w);
   reporter.info(fmt::format("study: the reference's sizes: the least of the {} compared meshes' at each point",
@@ -488,16 +498,23 @@ struct Planned {
 };
 std::vector<Planned> study_plan(const StudyConfig& config) {
   std::vector<Planned> plan;
-  for (sizing::SizeKind kind : config.kinds) plan.push_back({sizing::size_kind_name(kind), kind, config.triangles});
+  for (sizing::SizeKind kind : config.kinds) {
+    const bool cycles = kind == sizing::SizeKind::flow && config.flow_cycles > 1;  // flow_1 .. flow_N
+    for (int j = 1; j <= (cycles ? config.flow_cycles : 1); ++j)
+      plan.push_back({cycles ? fmt::format("flow_{}", j) : sizing::size_kind_name(kind), kind, config.triangles});
+  }
   for (int k = 1; k <= config.levels; ++k)
     plan.push_back({fmt::format("level_{}", k), sizing::SizeKind::uniform,
                     config.reference == ReferenceKind::envelope ? 0.0 : config.triangles * std::pow(config.factor, k)});
   return plan;
 }
 
-// The compared mesh whose flow the flow kind adapts to: the curvature mesh where it is compared,
-// else the first.
-const MeshRun& flow_source(const std::vector<MeshRun>& made) {
+// The compared mesh whose flow the flow kind's mesh `name` adapts to: cycle j > 1 (flow_j) the cycle
+// before's, else the curvature mesh where it is compared, else the first.
+const MeshRun& flow_source(const std::vector<MeshRun>& made, const std::string& name) {
+  const int cycle = name.rfind("flow_", 0) == 0 ? std::stoi(name.substr(5)) : 1;
+  for (const MeshRun& m : made)
+    if (cycle > 1 && m.name == fmt::format("flow_{}", cycle - 1)) return m;
   for (const MeshRun& m : made)
     if (m.name == "curvature") return m;
   return made.front();
@@ -560,7 +577,7 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
   StudyConfig c;
   c.path = path;
   r.known_keys(root, "", {"surface", "units", "case", "triangles", "meshes", "reference", "volume", "post", "ring", "end",
-                          "point", "ranks", "extensions"});
+                          "point", "ranks", "extensions", "flow_cycles"});
   const std::string surface = r.text(root["surface"], "surface", "");
   if (surface.empty()) r.fail("surface", "missing: the vessel surface (STL, VTP, ...) to study");
   c.surface = io::resolve_path(path, surface);
@@ -576,6 +593,7 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
   if (flow_case.empty()) r.fail("case", "missing: the flow case (TOML, as for `vesselmesh simulate`) run on each mesh");
   c.flow_case = io::resolve_path(path, flow_case);
   c.ranks = r.integer(root["ranks"], "ranks", c.ranks, 1);
+  c.flow_cycles = r.integer(root["flow_cycles"], "flow_cycles", c.flow_cycles, 1);
   c.triangles = r.number(root["triangles"], "triangles", c.triangles);
   if (c.triangles < 100) r.fail("triangles", "at least 100");
   if (root["meshes"]) {
@@ -590,6 +608,9 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
     if (!c.kinds.empty() && c.kinds.front() == sizing::SizeKind::flow)
       r.fail("meshes", "\"flow\" adapts to the flow on another compared mesh: list a geometric kind before it");
   }
+  if (c.flow_cycles > 1 && std::find(c.kinds.begin(), c.kinds.end(), sizing::SizeKind::flow) == c.kinds.end())
+    r.fail("flow_cycles", "the flow kind's cycles: list \"flow\" in meshes");
+  if (c.flow_cycles > 10) r.fail("flow_cycles", "at most 10 (each cycle a flow more)");
   if (const toml::table* t = root["reference"].as_table()) {
     r.known_keys(*t, "reference", {"kind", "levels", "factor", "time_step_check", "period_check"});
     const io::TomlView v = root["reference"];
@@ -747,11 +768,13 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
     const bool envelope_level = run.series && envelope_series;
     const double scale =
         envelope_level_scale(config.factor, static_cast<int>(m + 1 - config.kinds.size()), config.levels);
-    if (envelope_level && envelope.sizes.empty()) envelope = make_envelope(surface, result.meshes, reporter);
+    if (envelope_level && envelope.sizes.empty())
+      envelope = make_envelope(surface, result.meshes, config.interior.gradation, reporter);
     const LevelLayers layer_design =
         envelope_level ? level_layers(config.layers, scale) : LevelLayers{config.layers, 1.0};
     const volume::InteriorSizeOptions interior =
-        envelope_level ? level_interior(config.interior, envelope.interior_factor, scale) : config.interior;
+        envelope_level ? level_interior(config.interior, envelope.interior_factor, scale, envelope.flow)
+                       : config.interior;
     std::string what = fmt::format("kind={} triangles={} volume points={}\n", sizing::size_kind_name(kind),
                                    run.target_triangles, volume_points);
     if (envelope_level)
@@ -759,7 +782,7 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
                          layer_design.layers, layer_design.growth, interior.factor, interior.gradation,
                          interior.core_fraction, envelope.key);
     // The flow kind depends on its source's meshes and flow (their stamp).
-    const MeshRun* source = kind == sizing::SizeKind::flow ? &flow_source(result.meshes) : nullptr;
+    const MeshRun* source = kind == sizing::SizeKind::flow ? &flow_source(result.meshes, name) : nullptr;
     if (source) run.adapted_from = source->name;
     if (source)
       what += fmt::format("flow from {} {} (wall and interior)\n", source->name,

@@ -27,7 +27,8 @@
 //               the flow on the curvature mesh, or on the first mesh listed, which must come before it:
 //               sizing/size_field.h's flow kind over its last period's saved frames, issue 52, and
 //               its interior to the velocity's error there, post/fluid_metric.h; its cost in the
-//               summary counts that flow too)
+//               summary counts that flow too); flow_cycles = 1 (more: flow_1 .. flow_N, each
+//               adapted to the flow on the one before, all compared)
 //   [reference] kind = "envelope" (or "uniform"), levels = 3, factor = 1.33 (envelope: each level
 //               that many times finer in h than the one before, level 1 the finest compared mesh
 //               at every point / 1.1: 1.33^3 = 2.35 times the volume nodes a level, the reference
@@ -115,6 +116,9 @@ struct StudyConfig {
   // `mpirun -np ranks PROGRAM simulate CASE --mesh MESH -o DIR` (mpirun from PATH), PROGRAM this
   // vesselmesh program (set by the caller).
   int ranks = 1;
+  // The flow kind adapted this many times, each cycle to the flow on the cycle before's mesh (the first to
+  // the curvature mesh's): the compared meshes flow_1 .. flow_N (one cycle: "flow").
+  int flow_cycles = 1;
   std::string program;
 };
 

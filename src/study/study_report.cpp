@@ -618,13 +618,20 @@ Json summary_section(Document& doc, size_t markdown_at, size_t html_at, const St
       const double mean = mean_of_places(p), wall_mean = mean_of_places(wall_places[m.name]);
       const long first = std::count(p.begin(), p.end(), 1);
       const double flow = m.seconds.count("flow") ? m.seconds.at("flow") : NAN;
-      // The flow kind's cost counts the flow it adapts to (on another compared mesh).
-      const auto source = std::find_if(meshes.begin(), meshes.end(),
-                                       [&](const MeshRun& x) { return x.name == m.adapted_from; });
-      const double before = source != meshes.end() && source->seconds.count("flow") ? source->seconds.at("flow") : NAN;
+      // The flow kind's cost counts the flows it adapts to (on another compared mesh, and on each cycle before).
+      double before = m.adapted_from.empty() ? NAN : 0.0;
+      std::vector<std::string> sources;
+      for (std::string name = m.adapted_from; !name.empty() && std::isfinite(before);) {
+        const auto source =
+            std::find_if(meshes.begin(), meshes.end(), [&](const MeshRun& x) { return x.name == name; });
+        before = source != meshes.end() && source->seconds.count("flow") ? before + source->seconds.at("flow") : NAN;
+        sources.push_back(name + "'s");
+        name = source != meshes.end() ? source->adapted_from : std::string();
+      }
       cost.push_back({m.name, number(mean, 3), number(wall_mean, 3), std::to_string(first), std::to_string(m.dofs),
-                      std::isfinite(before) ? fmt::format("{} + {} ({}'s flow, adapted to)", number(flow, 3),
-                                                          number(before, 3), m.adapted_from)
+                      std::isfinite(before) ? fmt::format("{} + {} ({} flow{}, adapted to)", number(flow, 3),
+                                                          number(before, 3), fmt::join(sources, " and "),
+                                                          sources.size() > 1 ? "s" : "")
                                             : number(flow, 3)});
       means.push_back({{"mesh", m.name}, {"mean_place", std::isfinite(mean) ? Json(mean) : Json(nullptr)},
                        {"mean_place_whole_wall", std::isfinite(wall_mean) ? Json(wall_mean) : Json(nullptr)},

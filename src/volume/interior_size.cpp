@@ -86,8 +86,9 @@ double InteriorSize::at(const Vec3& x) const {
   t /= sum;
   double size = h + slope_ * std::max(0.0, hit.distance - t);
   const double flow = options_.flow ? options_.flow(x) : 0.0;
+  if ((!(flow > 0.0) || options_.flow_keeps_core) && !radius_.empty())
+    size = std::min(size, std::max(h, options_.core_fraction * r));
   if (flow > 0.0) size = std::min(size, flow);
-  else if (!radius_.empty()) size = std::min(size, std::max(h, options_.core_fraction * r));
   for (const RefineRegion& region : options_.regions) {
     const Vec3 axis = region.to - region.from;
     const double length2 = axis.squaredNorm();

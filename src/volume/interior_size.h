@@ -17,7 +17,8 @@
 // (RefineRegion) bound it further, graded outward from each. Where a flow's sizes are given (the
 // flow kind: post/fluid_metric.h), they take the core bound's place wherever they have a size:
 //   size(x) = factor * min(h(c) + d ln g, flow(x)),
-// so that the wall's growth inward still meets the layer, and the flow sets the rest.
+// so that the wall's growth inward still meets the layer, and the flow sets the rest (or bound it
+// beside the core bound: flow_keeps_core).
 // Every fill engine is given this field (volume/fill.h), so the engine changes the tetrahedra's
 // shape, not their number. Queries are const and thread-safe once built.
 #pragma once
@@ -54,6 +55,9 @@ struct InteriorSizeOptions {
   // The flow's sizes at a point (mesh units; 0 or less where it has none, as outside its mesh), or
   // empty for none; called concurrently.
   std::function<double(const Vec3&)> flow = {};
+  // true: the flow's sizes bound the field beside the core bound instead of in its place (the study's
+  // envelope levels, finer than a flow kind's interior and than the geometric kinds' cores alike).
+  bool flow_keeps_core = false;
 };
 
 // OptionError for a factor <= 0, a gradation < 1, a core fraction <= 0, or a region of radius or size

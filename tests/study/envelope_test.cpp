@@ -105,6 +105,26 @@ TEST(Envelope, LevelInteriorIsTheFinestComparedFieldOverTheScale) {
     EXPECT_NEAR(field(o, h / s, depth, R), field(finest, h, depth, R) / s, 1e-12) << depth;
 }
 
+// The flow kinds' interiors (issue 52): the least of their factor x flow sizes where they have one,
+// each level's under it by the scale, its core bound kept beside it.
+TEST(Envelope, LevelInteriorStaysUnderTheFlowKindsInteriorsToo) {
+  post::FluidSizes a, b;
+  a.mesh = test::kuhn_box({2, 2, 2}, Vec3(2, 2, 2));  // [0, 2]^3, sizes 0.5
+  a.sizes.assign(a.mesh.points.size(), 0.5);
+  b.mesh = test::kuhn_box({2, 2, 2}, Vec3(4, 2, 2));  // [0, 4] x [0, 2]^2, sizes 0.4 + 0.1 x
+  for (const Vec3& p : b.mesh.points) b.sizes.push_back(0.4 + 0.1 * p.x());
+  const std::function<double(const Vec3&)> least = least_flow_interior({a, b}, {1.2, 0.9});
+  EXPECT_NEAR(least(Vec3(1, 1, 1)), std::min(1.2 * 0.5, 0.9 * 0.5), 1e-12);
+  EXPECT_NEAR(least(Vec3(0.2, 1, 1)), 0.9 * 0.42, 1e-12);
+  EXPECT_NEAR(least(Vec3(3, 1, 1)), 0.9 * 0.7, 1e-12);  // outside the first
+  EXPECT_EQ(least(Vec3(5, 1, 1)), 0.0);                 // outside both
+  const volume::InteriorSizeOptions o =
+      level_interior({.factor = 1.0, .gradation = 1.3, .core_fraction = 0.1}, 0.8, 1.7, least);
+  EXPECT_TRUE(o.flow_keeps_core);
+  EXPECT_NEAR(o.factor * o.flow(Vec3(3, 1, 1)), 0.9 * 0.7 / 1.7, 1e-12);
+  EXPECT_FALSE(level_interior({}, 0.8, 1.7).flow);
+}
+
 // On the bundled bifurcation: the envelope of a uniform and a curvature mesh of 4000 triangles is no
 // larger than either mesh's achieved size at any input point, and the level remeshed to it over
 // 1.33 (remesh_level, as the study does: again to the calibrated sizes, and to the count) is, where

@@ -10,6 +10,7 @@
 #include "mesh/statistics.h"
 #include "post/ring.h"
 #include "post/wall_series.h"
+#include "synth/shapes.h"
 #include "mesh/error.h"
 #include "test_support.h"
 
@@ -155,6 +156,12 @@ TEST(StudyFile, NamesTheKeyOfEveryMistake) {
   EXPECT_NE(error(study_text("meshes = [\"flow\", \"uniform\"]\n" + ring))
                 .find("meshes: \"flow\" adapts to the flow on"),
             std::string::npos);
+  EXPECT_NE(error(study_text("flow_cycles = 2\n" + ring)).find("flow_cycles: the flow kind's cycles: list \"flow\""),
+            std::string::npos);
+  EXPECT_NE(error(study_text("meshes = [\"uniform\", \"flow\"]\nflow_cycles = 0\n" + ring)).find("flow_cycles"),
+            std::string::npos);
+  EXPECT_NE(error(study_text("meshes = [\"uniform\", \"flow\"]\nflow_cycles = 11\n" + ring)).find("at most 10"),
+            std::string::npos);
   // The defaults: an envelope series of three levels a third finer in h each (2.35 times the nodes);
   // the uniform kind keeps the seed's doubling of the triangles.
   const StudyConfig defaults = parse_study(study_text(ring), "s.toml");
@@ -262,6 +269,36 @@ TEST(Study, TheFlowKindAdaptsToTheCurvatureMeshsFlow) {
   EXPECT_FALSE(changed.meshes[2].reused);
 }
 
+// Two cycles of the flow kind (flow_cycles = 2): flow_1 adapted to the curvature mesh's flow, flow_2 to
+// flow_1's, both compared at the same count, flow_2's cost counting both flows it follows.
+TEST(Study, FlowCyclesAdaptEachToTheFlowBefore) {
+  test::TemporaryFolder tmp;
+  test::write_bytes(tmp.path("flow.toml"), kCase);
+  std::string text = kSmallStudy;
+  const std::string meshes = "meshes = [\"uniform\"]";
+  text.replace(text.find(meshes), meshes.size(), "meshes = [\"curvature\", \"flow\"]\nflow_cycles = 2");
+  test::write_bytes(tmp.path("study.toml"), study_text(text));
+  const StudyResult r = run_study(read_study(tmp.path("study.toml")), tmp.path("out"));
+  ASSERT_EQ(r.meshes.size(), 4u);
+  EXPECT_EQ(r.meshes[1].name, "flow_1");
+  EXPECT_EQ(r.meshes[1].adapted_from, "curvature");
+  EXPECT_EQ(r.meshes[2].name, "flow_2");
+  EXPECT_EQ(r.meshes[2].adapted_from, "flow_1");
+  for (int m : {1, 2}) {
+    EXPECT_NEAR(r.meshes[m].surface_triangles, 2000, 0.03 * 2000) << m;
+    EXPECT_NEAR(r.meshes[m].volume_points, r.meshes[0].volume_points, 0.02 * r.meshes[0].volume_points) << m;
+  }
+  const TriMesh first = io::read_surface(tmp.path("out/flow_1/surface.vtp")).mesh;
+  const TriMesh second = io::read_surface(tmp.path("out/flow_2/surface.vtp")).mesh;
+  EXPECT_NE(first.points.size(), second.points.size());
+  const std::string md = io::read_file(tmp.path("out/report.md"));
+  EXPECT_NE(md.find(fmt::format("{} + {} (flow_1's and curvature's flows, adapted to)",
+                                report::number(r.meshes[2].seconds.at("flow"), 3),
+                                report::number(r.meshes[1].seconds.at("flow") + r.meshes[0].seconds.at("flow"), 3))),
+            std::string::npos)
+      << md.substr(0, 3000);
+}
+
 TEST(Study, ARingMissingTheVesselStopsBeforeAnyMesh) {
   test::TemporaryFolder tmp;
   test::write_bytes(tmp.path("flow.toml"), kCase);
@@ -323,6 +360,30 @@ TEST(StudyFile, TheAnastomosisExampleFitsTheBundledSurface) {
   EXPECT_NEAR(mean, 61.9 / 60.0, 0.01 * 61.9 / 60.0);
   EXPECT_NEAR(peak / mean, 4.8, 0.05);
   EXPECT_LT(least, 0.0);
+}
+
+// The nozzle example (issue 52) fits the nozzle its header's synth command makes: its ends named by
+// points at the nozzle's ends, its rings cut closed loops, its points on the wall; its case reads.
+TEST(StudyFile, TheNozzleExampleFitsItsSynthesizedNozzle) {
+  const StudyConfig c = read_study(std::string(VESSELMESH_EXAMPLES_DIR) + "/nozzle_flow_study.toml");
+  const TriMesh wall = synth::nozzle({.radius = 2, .throat_radius = 1, .throat_length = 4, .cone_half_angle_deg = 20,
+                                      .inlet_length = 4, .outlet_length = 12, .resolution = 0.2});
+  const std::vector<analysis::OpenEnd> ends = analysis::open_ends(wall);
+  ASSERT_EQ(ends.size(), 2u);
+  const std::vector<std::string> names = volume::names_of_ends(ends, c.end_at);
+  for (size_t e = 0; e < ends.size(); ++e) {
+    const auto named = std::find_if(c.end_at.begin(), c.end_at.end(), [&](const auto& x) { return x.name == names[e]; });
+    EXPECT_LT((named->point - ends[e].center).norm(), 0.01) << names[e];
+  }
+  const std::vector<Vec3> zero(wall.points.size(), Vec3::Zero());
+  ASSERT_EQ(c.rings.size(), 2u);
+  for (const post::RingRequest& r : c.rings) EXPECT_TRUE(post::cut_ring(wall, zero, r.spec).closed) << r.spec.name;
+  const mesh::SurfaceLocator locator(wall);
+  for (const post::PointSpec& p : c.points) EXPECT_LT((locator.closest(p.point).point - p.point).norm(), 0.02) << p.name;
+  EXPECT_EQ(c.kinds.back(), sizing::SizeKind::flow);
+  const flow::FlowCase k = flow::read_case(c.flow_case);
+  EXPECT_TRUE(k.steady);
+  EXPECT_NEAR(k.boundaries[0].flow(0.0), 1.56, 1e-12);
 }
 
 // The paper-scale example (issue 30): the reduced example's ends, rings and points and case at

@@ -87,6 +87,13 @@ TEST(InteriorSize, AFlowsSizesTakeTheCoreBoundsPlace) {
   EXPECT_NEAR(field.at(outside), 0.25 * R, 1e-9);  // no flow size there: the core bound
   options.factor = 1.5;
   EXPECT_NEAR(InteriorSize(pipe, radius, options, layer).at(mid), 0.15, 1e-12);
+  // Beside the core bound (the study's envelope levels): only where the flow is the finer.
+  options.factor = 1.0;
+  options.flow_keeps_core = true;
+  const InteriorSize beside(pipe, radius, options, layer);
+  EXPECT_NEAR(beside.at(mid), 0.1, 1e-12);
+  EXPECT_NEAR(beside.at(Vec3(0.55, 0, 5)), 0.25 * R, 1e-9);  // the core bound under the flow's 3
+  EXPECT_NEAR(beside.at(outside), 0.25 * R, 1e-9);
 }
 
 // A finer region (volume --refine): inside the capsule its size, outside it growing by ln(g) a unit
