@@ -160,16 +160,19 @@ SurfaceData finish_surface(SurfaceData out, std::vector<Field> cell_fields, cons
   mesh::remap_triangles(out.mesh.triangles, remap);
   for (std::vector<int>& line : out.lines)
     for (int& v : line) v = remap[v];
-  if (out.mesh.num_points() != before) {
-    for (Field& field : out.point_data) {
-      std::vector<double> merged(static_cast<size_t>(out.mesh.num_points()) * field.components);
-      for (int i = before - 1; i >= 0; --i)  // backwards: the first occurrence writes last
-        for (int c = 0; c < field.components; ++c)
-          merged[static_cast<size_t>(remap[i]) * field.components + c] = field.values[static_cast<size_t>(i) * field.components + c];
-      field.values = std::move(merged);
-    }
-  }
+  if (out.mesh.num_points() != before) merge_point_fields(out.point_data, remap, out.mesh.num_points());
   return out;
+}
+
+void merge_point_fields(std::vector<Field>& fields, const std::vector<int>& remap, int points) {
+  for (Field& field : fields) {
+    std::vector<double> merged(static_cast<size_t>(points) * field.components);
+    for (int i = static_cast<int>(remap.size()) - 1; i >= 0; --i)  // backwards: the first occurrence writes last
+      for (int c = 0; c < field.components; ++c)
+        merged[static_cast<size_t>(remap[i]) * field.components + c] =
+            field.values[static_cast<size_t>(i) * field.components + c];
+    field.values = std::move(merged);
+  }
 }
 
 SurfaceData read_vtk_surface(const std::string& path, VtkFormat format, const std::string& label_array) {

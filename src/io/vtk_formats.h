@@ -69,8 +69,9 @@ void write_vtu_tetrahedra(const std::string& path, const std::vector<Vec3>& poin
 // "tag_<number>" otherwise; `layer` and `column` kept when present. Points are not merged.
 // Checked like the surface readers: a bad file is an InputError naming it. `point_data`, when
 // given, receives the file's numeric point arrays (e.g. the solver's velocity and pressure).
-// A .pvtu (VTU pieces) is read whole: its pieces one after the other (the points they share
-// repeated; each piece's cells on its own points).
+// A .pvtu (VTU pieces) is read whole: its pieces one after the other, the points they share (a
+// process's ghost points) merged into one, its data the first piece's, as one process wrote it up to
+// the points' order (fluid_metric's Hessians and the flow mesh's point count need the pieces joined).
 TetMesh read_vtu_volume(const std::string& path, std::vector<Field>* point_data = nullptr);
 
 // A dataset in pieces (one per MPI process): ParaView's .pvtu / .pvtp file naming the pieces

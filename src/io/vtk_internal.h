@@ -19,6 +19,10 @@ const char* vtk_format_name(VtkFormat format);
 // pieces keep only the arrays every piece has (same name and components).
 void append_piece_fields(std::vector<Field>& fields, std::vector<Field>& piece, bool first);
 
+// Point data after a merge of points (mesh::merge_identical_points' `remap`, to `points` points):
+// each merged point's values are the first one's.
+void merge_point_fields(std::vector<Field>& fields, const std::vector<int>& remap, int points);
+
 // Last steps of every reader: labels taken from the chosen integer cell array (or the first
 // of ModelFaceID, tag, CellEntityIds, gmsh:physical), points with identical coordinates
 // merged (point data from the first). `cell_fields` hold one tuple per triangle.

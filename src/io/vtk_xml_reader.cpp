@@ -9,6 +9,7 @@
 #include "io/base64.h"
 
 #include "mesh/error.h"
+#include "mesh/merge_points.h"
 
 #include <fmt/format.h>
 
@@ -594,7 +595,7 @@ SurfaceData parse_vtk_xml_surface(std::string_view bytes, VtkFormat format, cons
 }
 
 TetMesh read_vtu_volume(const std::string& path, std::vector<Field>* point_data) {
-  if (path.ends_with(".pvtu")) {  // the pieces one after the other
+  if (path.ends_with(".pvtu")) {  // the pieces one after the other, their shared points merged
     TetMesh all;
     std::vector<Field> fields;
     bool first = true;
@@ -619,6 +620,16 @@ TetMesh read_vtu_volume(const std::string& path, std::vector<Field>* point_data)
       append_piece_fields(fields, piece_fields, first);
       first = false;
     }
+    // A point two pieces share (each writes the ghost points of its cells) is one point, its data
+    // the first piece's: the mesh as one process wrote it, up to the points' order.
+    const std::vector<int> remap = mesh::merge_identical_points(all.points);
+    for (Tet& t : all.tets)
+      for (int& v : t) v = remap[v];
+    for (Prism& p : all.prisms)
+      for (int& v : p) v = remap[v];
+    for (Triangle& t : all.boundary)
+      for (int& v : t) v = remap[v];
+    if (static_cast<int>(remap.size()) != all.num_points()) merge_point_fields(fields, remap, all.num_points());
     if (point_data) *point_data = std::move(fields);
     return all;
   }

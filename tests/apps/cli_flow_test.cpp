@@ -4,6 +4,7 @@
 #include "io/stl.h"
 #include "io/surface.h"
 #include "io/volume_file.h"
+#include "post/fluid_metric.h"
 #include "io/vtk_formats.h"
 #include "mesh/connectivity.h"
 #include "synth/shapes.h"
@@ -210,8 +211,8 @@ TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
                                 " 2>" + quote(tmp.path(folder + ".err"));
     return std::system(command.c_str());
   };
-  // A point array of a result, whole (one process's .vtu / .vtp) or in pieces (.pvtu / .pvtp: the
-  // points the pieces share repeated in a .pvtu), by point in the order of their coordinates, once each.
+  // A point array of a result, whole (one process's .vtu / .vtp) or in pieces (.pvtu / .pvtp, the
+  // points the pieces share merged), by point in the order of their coordinates, once each.
   const auto point_data = [&](const std::string& folder, const std::string& file, const std::string& name) {
     std::vector<Field> fields;
     std::vector<Vec3> points;
@@ -274,6 +275,21 @@ TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
               1e-6);
     EXPECT_LT(relative_difference(point_data("one", "indices.vtp", "tawss"), point_data(folder, "indices.pvtp", "tawss")),
               1e-6);
+    // The flow-adapted interior's sizes (issue 52) read from the pieces: the one process's, point by point.
+    const post::FluidSizes whole = post::fluid_error_sizes(tmp.path("one"), {}, 1.3);
+    const post::FluidSizes pieces = post::fluid_error_sizes(tmp.path(folder), {}, 1.3);
+    ASSERT_EQ(pieces.mesh.num_points(), whole.mesh.num_points());
+    std::map<std::array<double, 3>, double> size_at;
+    for (int v = 0; v < whole.mesh.num_points(); ++v) {
+      const Vec3& p = whole.mesh.points[v];
+      size_at[{p.x(), p.y(), p.z()}] = whole.sizes[v];
+    }
+    double worst = 0.0;
+    for (int v = 0; v < pieces.mesh.num_points(); ++v) {
+      const Vec3& p = pieces.mesh.points[v];
+      worst = std::max(worst, std::abs(pieces.sizes[v] / size_at.at({p.x(), p.y(), p.z()}) - 1.0));
+    }
+    EXPECT_LT(worst, 1e-4);
     // Each process wrote its pieces; the first read the mesh and says its peak memory then.
     EXPECT_TRUE(std::filesystem::exists(tmp.path(fmt::format("{}/pieces/fluid_000000_{}.vtu", folder, ranks - 1))));
     EXPECT_GT(Json::parse(read_text(tmp.path(folder + "/summary.json")))["distribution_peak_memory_mb"].get<double>(),
