@@ -104,6 +104,19 @@ TriMesh unit_square(int n, bool flip) {
   return m;
 }
 
+double triangle_density_between(const TriMesh& mesh, double z_low, double z_high) {
+  double area = 0.0;
+  int count = 0;
+  for (const Triangle& t : mesh.triangles) {
+    const Vec3 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
+    if (const double z = (a.z() + b.z() + c.z()) / 3.0; z >= z_low && z <= z_high) {
+      area += 0.5 * (b - a).cross(c - a).norm();
+      ++count;
+    }
+  }
+  return count / area;
+}
+
 TetMesh kuhn_box(const std::array<int, 3>& cells, const Vec3& size) {
   TetMesh mesh;
   const auto id = [&](int i, int j, int k) { return (k * (cells[1] + 1) + j) * (cells[0] + 1) + i; };

@@ -68,6 +68,10 @@ TriMesh unit_square(int n, bool flip = false);
 // boundary triangles.
 TetMesh kuhn_box(const std::array<int, 3>& cells, const Vec3& size);
 
+// Triangles per unit area of a surface between two axial positions (z of the triangles' centroids),
+// as a nozzle's throat or pipe has them.
+double triangle_density_between(const TriMesh& mesh, double z_low, double z_high);
+
 // A study report's interactive 3D view (study/view3d.h) as headless Chromium draws it, the network
 // off (every host unresolvable, a dead proxy): the page opened with `query` (e.g. "?view3d"), its
 // status element read back from the DOM and a screenshot of the whole view taken. Nothing when

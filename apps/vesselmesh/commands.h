@@ -43,6 +43,7 @@ Command add_demo_command(CLI::App& parent);
 Command add_windkessel_command(CLI::App& parent);
 Command add_export_command(CLI::App& parent);
 Command add_extend_command(CLI::App& parent);
+Command add_adapt_command(CLI::App& parent);
 
 // Reading, checking and describing a surface: what `info` does, reused by `demo`.
 struct SurfaceCheckOptions {

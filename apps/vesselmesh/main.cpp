@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   app.fallthrough();
   const std::vector<Command> commands = {add_info_command(app), add_curvature_command(app), add_centerline_command(app), add_size_command(app),
                                          add_remesh_command(app),
-                                         add_volume_command(app), add_quality_command(app), add_simulate_command(app), add_wss_command(app), add_sample_command(app), add_study_command(app), add_windkessel_command(app), add_export_command(app), add_extend_command(app),
+                                         add_volume_command(app), add_adapt_command(app), add_quality_command(app), add_simulate_command(app), add_wss_command(app), add_sample_command(app), add_study_command(app), add_windkessel_command(app), add_export_command(app), add_extend_command(app),
                                          add_synth_command(app),
                                          add_demo_command(app)};
   try {

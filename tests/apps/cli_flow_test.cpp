@@ -484,20 +484,6 @@ TEST(Cli, SteadyNewtonSettlesOnABifurcationAneurysm) {
   EXPECT_GT(failed["steady_history"][3]["residual"].get<double>(), 1e-3);
 }
 
-// Triangles per mm^2 of a surface's wall between two axial positions (triangle centroids).
-double density_between(const TriMesh& mesh, double z_low, double z_high) {
-  double area = 0.0;
-  int count = 0;
-  for (const Triangle& t : mesh.triangles) {
-    const Vec3 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
-    const double z = (a.z() + b.z() + c.z()) / 3.0;
-    if (z < z_low || z > z_high) continue;
-    area += 0.5 * (b - a).cross(c - a).norm();
-    ++count;
-  }
-  return count / area;
-}
-
 // Points per mm^3 of a nozzle's volume mesh (axis z) between two axial positions and two radii.
 double volume_density(const TetMesh& mesh, double z_low, double z_high, double r_low, double r_high) {
   int count = 0;
@@ -548,11 +534,12 @@ TEST(Cli, RemeshAndVolumeToAFlowRefineTheNozzlesThroatAndJet) {
   // Along the flow (+z): inlet pipe to z = -6.75, cone to -4, throat to the step at 0, outlet pipe.
   const TriMesh uniform = io::read_surface(tmp.path("wall.vtp")).mesh;
   const TriMesh mesh = io::read_surface(tmp.path("adapted.vtp")).mesh;
-  const double throat = density_between(mesh, -4.0, 0.0), cone = density_between(mesh, -6.75, -4.0);
-  EXPECT_GT(throat, 1.3 * density_between(uniform, -4.0, 0.0));  // measured 33.4 and 21.4 per mm^2
-  EXPECT_GT(cone, 1.3 * density_between(uniform, -6.75, -4.0));   // 21.4 and 14.8
-  EXPECT_GT(throat, 4.0 * density_between(mesh, 4.0, 12.0));     // the outlet pipe's 4.5
-  EXPECT_GT(cone, 2.5 * density_between(mesh, -10.7, -7.5));     // the inlet pipe's 6.0
+  const double throat = test::triangle_density_between(mesh, -4.0, 0.0);
+  const double cone = test::triangle_density_between(mesh, -6.75, -4.0);
+  EXPECT_GT(throat, 1.3 * test::triangle_density_between(uniform, -4.0, 0.0));  // measured 33.4 and 21.4 per mm^2
+  EXPECT_GT(cone, 1.3 * test::triangle_density_between(uniform, -6.75, -4.0));   // 21.4 and 14.8
+  EXPECT_GT(throat, 4.0 * test::triangle_density_between(mesh, 4.0, 12.0));     // the outlet pipe's 4.5
+  EXPECT_GT(cone, 2.5 * test::triangle_density_between(mesh, -10.7, -7.5));     // the inlet pipe's 6.0
   ASSERT_EQ(adapt_to("again.vtp").code, 0);
   EXPECT_EQ(read_text(tmp.path("adapted.vtp")), read_text(tmp.path("again.vtp")));
 
@@ -608,6 +595,33 @@ TEST(Cli, RemeshAndVolumeToAFlowRefineTheNozzlesThroatAndJet) {
   refused({"remesh", tmp.path("pipe.stl"), "--size", "flow", "--flow", tmp.path("flow"), "--target-triangles", "3000",
            "-o", tmp.path("bad.vtp")},
           "the flow's wall lies up to");
+}
+
+// `adapt` (issue 52; its cycles are tested in tests/study/adaptation_test.cpp): what it refuses, with
+// exit 2 before it writes anything, in one line (the option parser's two: the error, then where the help is).
+TEST(Cli, AdaptRefusesBadInputInOneLine) {
+  test::TemporaryFolder tmp;
+  ASSERT_EQ(run({"synth", "cylinder", "--radius", "2", "--length", "8", "-o", tmp.path("pipe.stl"), "-q"}).code, 0);
+  ASSERT_EQ(run({"synth", "sphere", "--radius", "2", "-o", tmp.path("ball.stl"), "-q"}).code, 0);
+  test::write_bytes(tmp.path("case.toml"),
+                    "mesh = \"x.msh\"\nlength_unit = \"mm\"\n[fluid]\ndensity = 1060\nviscosity = 0.0035\n[time]\n"
+                    "steady = true\n[[boundary]]\ntag = \"inlet\"\ntype = \"velocity\"\nflow = 1.0\n[[boundary]]\n"
+                    "tag = \"outlet_1\"\ntype = \"traction\"\n[[boundary]]\ntag = \"wall\"\ntype = \"wall\"\n");
+  const auto refused = [&](std::vector<std::string> args, const std::string& part) {
+    args.insert(args.begin(), "adapt");
+    for (const std::string& a : {std::string("-o"), tmp.path("out")}) args.push_back(a);
+    const RunResult r = run(args);
+    EXPECT_EQ(r.code, 2) << r.err;
+    const std::string line = r.err.find("--help") != std::string::npos ? r.err.substr(0, r.err.find('\n')) : r.err;
+    EXPECT_NE(last_line(line).find(part), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(tmp.path("out")));
+  };
+  refused({tmp.path("pipe.stl"), tmp.path("case.toml"), "--target-triangles", "0"}, "--target-triangles 0");
+  refused({tmp.path("pipe.stl"), tmp.path("case.toml"), "--target-triangles", "2000", "--cycles", "0"},
+          "--cycles 0: at least 1");
+  refused({tmp.path("pipe.stl"), tmp.path("case.toml"), "--target-triangles", "2000", "--start", "flow"}, "--start");
+  refused({tmp.path("pipe.stl"), tmp.path("none.toml"), "--target-triangles", "2000"}, "none.toml");
+  refused({tmp.path("ball.stl"), tmp.path("case.toml"), "--target-triangles", "2000"}, "no open or flat-capped end");
 }
 
 // `extend` (issue 32): two of a Y's three ends by name and index, five radii each along their
