@@ -35,13 +35,10 @@ FluidSizes fluid_error_sizes(const std::string& flow_directory, const std::vecto
   const WallSeries series = read_wall_series(flow_directory, "fluid");
   if (series.frames.empty())
     throw InputError(fmt::format("{}: the flow saved no fluid frame (its case's output.fluid_every)", flow_directory));
-  const std::vector<const WallFrame*> saved = times.empty() ? last_period_frames(series) : std::vector<const WallFrame*>{};
-  const size_t count = times.empty() ? saved.size() : times.size();
   FluidSizes out;
   std::vector<std::vector<double>> fields;
-  for (size_t i = 0; i < count; ++i) {
-    const FluidField f = times.empty() ? read_fluid_frame(*saved[i]) : fluid_at_time(series, times[i]);
-    if (i == 0) {
+  for_bounded_frames(series, times, read_fluid_frame, fluid_at_time, [&](const FluidField& f, bool first) {
+    if (first) {
       out.mesh = f.mesh;
     } else if (f.mesh.points.size() != out.mesh.points.size() || f.mesh.tets != out.mesh.tets ||
                f.mesh.prisms != out.mesh.prisms) {
@@ -50,11 +47,8 @@ FluidSizes fluid_error_sizes(const std::string& flow_directory, const std::vecto
                                    flow_directory, f.time, out.times.front()));
     }
     out.times.push_back(f.time);
-    for (int c = 0; c < 3; ++c) {
-      std::vector<double>& component = fields.emplace_back(f.velocity.size());
-      for (size_t v = 0; v < f.velocity.size(); ++v) component[v] = f.velocity[v][c];
-    }
-  }
+    append_components(fields, f.velocity);
+  });
   const double to_mm = series.length_scale / 1e-3;
   for (Vec3& p : out.mesh.points) p *= to_mm;
   reporter.info(fmt::format("the velocity's interpolation error in the flow's volume ({} points) at {} saved time{}, "

@@ -17,27 +17,18 @@ WallMetric wall_error_metric(const std::string& flow_directory, const std::vecto
   if (series.frames.empty())
     throw InputError(fmt::format("{}: the flow saved no wall frame", flow_directory));
   WallMetric out;
-  // The frames, read one at a time: a cycle's frames of a large wall do not all fit at once.
-  const std::vector<const WallFrame*> saved = times.empty() ? last_period_frames(series) : std::vector<const WallFrame*>{};
-  const size_t count = times.empty() ? saved.size() : times.size();
   std::vector<std::vector<double>> fields;
-  for (size_t i = 0; i < count; ++i) {
-    const WallField f = times.empty() ? read_wall_frame(*saved[i]) : wall_at_time(series, times[i]);
-    if (i == 0) {
+  for_bounded_frames(series, times, read_wall_frame, wall_at_time, [&](const WallField& f, bool first) {
+    if (first) {
       out.wall = f.mesh;
-    } else if (f.mesh.points.size() != out.wall.points.size() ||
-               f.mesh.triangles != out.wall.triangles) {
+    } else if (f.mesh.points.size() != out.wall.points.size() || f.mesh.triangles != out.wall.triangles) {
       throw InputError(fmt::format(
-          "{}: the wall at t = {} s is not the mesh of t = {} s: the flow's frames must share "
-          "one wall",
+          "{}: the wall at t = {} s is not the mesh of t = {} s: the flow's frames must share one wall",
           flow_directory, f.time, out.times.front()));
     }
     out.times.push_back(f.time);
-    for (int c = 0; c < 3; ++c) {
-      std::vector<double>& component = fields.emplace_back(f.wss.size());
-      for (size_t v = 0; v < f.wss.size(); ++v) component[v] = f.wss[v][c];
-    }
-  }
+    append_components(fields, f.wss);
+  });
   const double to_mm = series.length_scale / 1e-3;
   for (Vec3& p : out.wall.points) p *= to_mm;
   reporter.info(fmt::format(

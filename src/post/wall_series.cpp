@@ -93,6 +93,13 @@ std::vector<const WallFrame*> last_period_frames(const WallSeries& series) {
   return out;
 }
 
+void append_components(std::vector<std::vector<double>>& fields, const std::vector<Vec3>& vectors) {
+  for (int c = 0; c < 3; ++c) {
+    std::vector<double>& component = fields.emplace_back(vectors.size());
+    for (size_t v = 0; v < vectors.size(); ++v) component[v] = vectors[v][c];
+  }
+}
+
 WallField wall_at_time(const WallSeries& series, double time) {
   const FramePair pair = frames_around(series, time);
   WallField a = read_wall_frame(series.frames[pair.first]);

@@ -47,6 +47,22 @@ FramePair frames_around(const WallSeries& series, double time);
 // frame alone: what a metric bounds by default (wall_metric.h, fluid_metric.h).
 std::vector<const WallFrame*> last_period_frames(const WallSeries& series);
 
+// The frames a metric bounds, in turn (`use(field, first)`): at each of `times`, `at(series, t)`
+// (interpolated), or with no times each of last_period_frames read by `read` (one at a time: a
+// cycle's frames of a large mesh do not all fit at once).
+template <typename Read, typename At, typename Use>
+void for_bounded_frames(const WallSeries& series, const std::vector<double>& times, Read read, At at, Use use) {
+  if (times.empty()) {
+    const std::vector<const WallFrame*> saved = last_period_frames(series);
+    for (size_t i = 0; i < saved.size(); ++i) use(read(*saved[i]), i == 0);
+  } else {
+    for (size_t i = 0; i < times.size(); ++i) use(at(series, times[i]), i == 0);
+  }
+}
+
+// A vector field's three components appended to `fields`, one scalar field each.
+void append_components(std::vector<std::vector<double>>& fields, const std::vector<Vec3>& vectors);
+
 // Linear in time between the two saved frames around `time`; InputError when `time` lies
 // outside the saved span (the message gives it).
 WallField wall_at_time(const WallSeries& series, double time);
