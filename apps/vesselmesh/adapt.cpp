@@ -54,6 +54,10 @@ Command add_adapt_command(CLI::App& parent) {
                   "p of the L^p norm of the WSS's and the velocity's interpolation error the sizes make least")
       ->check(CLI::Range(1.0, 1e6))
       ->capture_default_str();
+  app->add_option("--layer-y-plus", o->adapt.y_plus,
+                  "The later cycles' first layer no higher than this y+ in the last flow's largest wall shear (as "
+                  "'volume --flow'); 0: the layer as --thickness-ratio makes it")
+      ->capture_default_str();
   add_common_options(*app, o->common);
   return {app, [o] {
             TerminalReporter reporter(o->common.quiet);

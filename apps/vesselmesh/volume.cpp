@@ -8,6 +8,7 @@
 #include "mesh/error.h"
 #include "mesh/geometry.h"
 #include "post/fluid_metric.h"
+#include "post/wall_metric.h"
 #include "volume/quality.h"
 #include "volume/volume_mesh.h"
 
@@ -107,6 +108,7 @@ struct VolumeCommandOptions {
   std::vector<std::string> refine;
   std::string flow;
   std::vector<double> flow_times;
+  double layer_y_plus = 1.0;
   double error_norm = 2.0;
   volume::VolumeOptions volume;
   int target_points = 0;
@@ -133,8 +135,8 @@ int run_volume(const VolumeCommandOptions& o) {
                                    "an outlet; cut the vessel's ends open",
                                    o.surface.path));
     volume::check_interior_size_options(options.interior);
-    if (o.flow.empty() && (!o.flow_times.empty() || o.error_norm != 2.0))
-      throw OptionError("--flow-time and --error-norm go with --flow");
+    if (o.flow.empty() && (!o.flow_times.empty() || o.error_norm != 2.0 || o.layer_y_plus != 1.0))
+      throw OptionError("--flow-time, --error-norm and --layer-y-plus go with --flow");
     int target_points = o.target_points;
     Json flow_json = nullptr;
     if (!o.flow.empty()) {  // the interior's sizes from the flow's velocity (issue 52), at the flow mesh's count
@@ -146,6 +148,13 @@ int run_volume(const VolumeCommandOptions& o) {
                    {"flow_mesh_points", sizes.mesh.num_points()},
                    {"size_mm", {{"min", round_to(*low, 5)}, {"max", round_to(*high, 5)}}}};
       options.interior.flow = post::size_function(std::move(sizes));
+      if (o.layer_y_plus > 0.0 && options.layer.layers > 0) {  // the first layer's height from the wall shear
+        post::WallHeights heights = post::first_layer_heights(o.flow, o.flow_times, o.layer_y_plus, {}, reporter);
+        const auto least = std::min_element(heights.heights.begin(), heights.heights.end());
+        flow_json["layer_y_plus"] = o.layer_y_plus;
+        flow_json["least_first_height_mm"] = round_to(*least, 6);
+        options.layer.first_height = post::height_function(std::move(heights));
+      }
     }
     // The layer's thickness and the interior's core bound follow the local radius: the
     // distance map (without a layer, a surface whose centerlines cannot be traced is
@@ -204,6 +213,7 @@ int run_volume(const VolumeCommandOptions& o) {
                          {"moves", r.slivers.moves},
                          {"insertions", r.slivers.insertions},
                          {"collapses", r.slivers.collapses}};
+      json["first_height_capped"] = r.first_height_capped;
       json["shrink"] = {{"wall_points", r.shrunk_vertices},
                         {"least_fraction", round_to(r.least_fraction, 4)},
                         {"least_at", to_json(r.least_at)}};
@@ -303,6 +313,14 @@ Command add_volume_command(CLI::App& parent) {
                   "--flow: p of the L^p norm of the velocity's interpolation error that the sizes make least for the "
                   "count (larger: closer to bounding the largest error)")
       ->check(CLI::Range(1.0, 1e6))
+      ->capture_default_str();
+  app->add_option("--layer-y-plus", o->layer_y_plus,
+                  "--flow: the first layer no higher than this y+ in the flow's largest wall shear over --flow-time "
+                  "(y = y+ mu / sqrt(rho |WSS|), the near-wall viscous length; the fluid from the flow's summary): "
+                  "where that is below the first layer's height, the layers there grow from it over the same "
+                  "thickness (growth up to 2, beyond which the layer is thinner), graded along the wall; 0: the "
+                  "layers as --thickness-ratio and --growth give them")
+      ->check(CLI::Range(0.0, 1e6))
       ->capture_default_str();
   app->add_option("--sliver-angle", o->volume.sliver_angle_deg,
                   "Interior tetrahedra with a dihedral angle under this (degrees) are improved after the fill by flips, "

@@ -553,6 +553,7 @@ void Run::write_summary() const {
     j["steady_method"] = fc_.steady_method;
     j["steady_history"] = history_json(ns_->steady_history());
   }
+  j["fluid"] = {{"density_kg_m3", fc_.density}, {"viscosity_Pa_s", fc_.viscosity}};
   j["wss_method"] = fc_.wss_method;
   if (!fc_.steady) j["initial"] = fc_.stokes_start ? "stokes" : "rest";
   if (fc_.period > 0.0) j["period"] = fc_.period;

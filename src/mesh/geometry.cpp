@@ -29,6 +29,17 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
   return a + v * ab + w * ac;
 }
 
+std::array<double, 3> barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 n = (b - a).cross(c - a);
+  const double area = n.squaredNorm();
+  if (!(area > 0.0)) return {1.0 / 3, 1.0 / 3, 1.0 / 3};
+  std::array<double, 3> l = {(c - b).cross(p - b).dot(n) / area, (a - c).cross(p - c).dot(n) / area, 0.0};
+  l[0] = std::clamp(l[0], 0.0, 1.0);
+  l[1] = std::clamp(l[1], 0.0, 1.0 - l[0]);
+  l[2] = 1.0 - l[0] - l[1];
+  return l;
+}
+
 std::array<double, 3> triangle_angles(const TriMesh& m, int t) {
   const Triangle& f = m.triangles[t];
   std::array<double, 3> angles{};

@@ -26,6 +26,10 @@ inline Vec3 triangle_centroid(const TriMesh& m, int t) {
 // 5.1.5: by Voronoi regions of the corners and edges).
 Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
+// The barycentric coordinates of p's projection onto the plane of triangle (a, b, c), clamped to
+// the triangle (non-negative, summing to one); a third each for a degenerate triangle.
+std::array<double, 3> barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
 // Interior angles at corners 0, 1, 2, in radians (0 for a corner with a zero-length edge).
 std::array<double, 3> triangle_angles(const TriMesh& m, int t);
 

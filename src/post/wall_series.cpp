@@ -1,5 +1,6 @@
 #include "post/wall_series.h"
 
+#include "flow/case.h"
 #include "io/atomic_file.h"
 #include "io/vtk_formats.h"
 #include "mesh/error.h"
@@ -45,6 +46,16 @@ WallSeries read_wall_series(const std::string& directory, const std::string& col
       series.length_unit = j.at("units").at("points").get<std::string>();
       series.length_scale = j.at("units").at("length_scale_m").get<double>();
       if (j.contains("period")) series.period = j.at("period").get<double>();
+      if (j.contains("fluid")) {
+        series.density = j.at("fluid").at("density_kg_m3").get<double>();
+        series.viscosity = j.at("fluid").at("viscosity_Pa_s").get<double>();
+      } else if (j.contains("case") && std::filesystem::exists(j.at("case").get<std::string>())) {
+        try {
+          const flow::FlowCase c = flow::read_case(j.at("case").get<std::string>());
+          series.density = c.density, series.viscosity = c.viscosity;
+        } catch (const InputError&) {  // the case no longer reads (its mesh moved): the fluid unknown
+        }
+      }
     } catch (const nlohmann::json::exception& e) {
       throw InputError(fmt::format("{}: {}", summary, e.what()));
     }

@@ -21,6 +21,10 @@ struct WallSeries {
   std::string length_unit = "mm";
   double length_scale = 1e-3;  // metres per unit
   double period = 0.0;         // s, from the summary; 0 when the case gave none
+  // The fluid, from the summary (or, for a flow made before the summary named it, the case file it
+  // names, where that still exists); 0 when neither says.
+  double density = 0.0;    // kg/m3
+  double viscosity = 0.0;  // Pa s
 };
 
 // Throws InputError naming the file when the folder has no readable wall.pvd. `collection`

@@ -46,6 +46,9 @@ void check_adapt_options(const AdaptOptions& o) {
                                   o.target_triangles));
   if (o.cycles < 1) throw OptionError(fmt::format("--cycles {}: at least 1 flow-adapted cycle", o.cycles));
   if (o.target_points < 0) throw OptionError(fmt::format("--target-points {}: give a count > 0", o.target_points));
+  if (!(o.y_plus >= 0.0 && std::isfinite(o.y_plus)))
+    throw OptionError(fmt::format("--layer-y-plus {}: give a y+ >= 0 (0: the layer as --thickness-ratio makes it)",
+                                  o.y_plus));
   if (o.start == sizing::SizeKind::flow)
     throw OptionError("--start flow: the first mesh is of a geometric kind (the flow kind needs a flow to adapt to)");
   volume::check_interior_size_options(o.volume.interior);
@@ -90,9 +93,13 @@ std::vector<AdaptCycle> adapt_to_flow(const TriMesh& input, const flow::FlowCase
     step = Clock::now();
     volume::VolumeOptions vo = options.volume;
     vo.end_at = end_at;
-    if (k > 0)
+    if (k > 0) {
       vo.interior.flow = post::size_function(
           post::fluid_error_sizes(before, {}, vo.interior.gradation, options.error, reporter));
+      if (options.y_plus > 0.0 && vo.layer.layers > 0)
+        vo.layer.first_height = post::height_function(post::first_layer_heights(
+            before, {}, options.y_plus, {flow_case.density, flow_case.viscosity}, reporter));
+    }
     const centerline::DistanceMap wall_distance =
         centerline::distance_map(remeshed.mesh, centerline::extract(remeshed.mesh, {}, reporter));
     const std::vector<analysis::OpenEnd> ends = analysis::open_ends(remeshed.mesh);

@@ -30,6 +30,9 @@ struct AdaptOptions {
   // first mesh's volume named them (by their centres), so that no end swaps names as the wall changes.
   volume::VolumeOptions volume;
   sizing::ErrorMetricOptions error;  // the WSS's and the velocity's L^p norm
+  // The later cycles' first layer no higher than this y+ in the last flow's largest wall shear
+  // (post::first_layer_heights); 0: the layer as `volume` gives it.
+  double y_plus = 1.0;
 };
 
 struct AdaptCycle {
@@ -43,7 +46,7 @@ struct AdaptCycle {
   double wall_mean_wss = 0.0;  // Pa, area-weighted
 };
 
-// OptionError for a target of triangles <= 0, cycles < 1, a flow start kind or a negative point target.
+// OptionError for a target of triangles <= 0, cycles < 1, a flow start kind, a negative point target or y+.
 void check_adapt_options(const AdaptOptions& options);
 
 // `input`: the vessel's surface (read and cleaned, mm); `flow_case`: the case each mesh's flow runs

@@ -1,6 +1,7 @@
 #include "study/envelope.h"
 
 #include "mesh/error.h"
+#include "mesh/geometry.h"
 #include "mesh/locator.h"
 #include "sizing/gradation.h"
 #include "sizing/metric.h"
@@ -44,7 +45,7 @@ std::vector<double> field_on(const TriMesh& input, const TriMesh& mesh, const st
   tbb::parallel_for(size_t{0}, input.points.size(), [&](size_t v) {
     const mesh::SurfaceLocator::Hit hit = on_mesh.closest(input.points[v]);
     const Triangle& f = mesh.triangles[hit.triangle];
-    const auto l = barycentric(hit.point, mesh.points[f[0]], mesh.points[f[1]], mesh.points[f[2]]);
+    const auto l = vesselmesh::mesh::barycentric(hit.point, mesh.points[f[0]], mesh.points[f[1]], mesh.points[f[2]]);
     there[v] = l[0] * values[f[0]] + l[1] * values[f[1]] + l[2] * values[f[2]];
   });
   return there;
@@ -178,6 +179,17 @@ std::function<double(const Vec3&)> least_flow_interior(std::vector<post::FluidSi
     for (size_t k = 0; k < fields.size(); ++k)
       if (const double h = factors[k] * fields[k]->at(x); h > 0.0) least = least > 0.0 ? std::min(least, h) : h;
     return least;
+  };
+}
+
+std::function<double(const Vec3&)> level_first_height(const std::vector<post::WallHeights>& flows, double scale) {
+  if (flows.empty()) return nullptr;
+  std::vector<std::function<double(const Vec3&)>> heights;
+  for (const post::WallHeights& h : flows) heights.push_back(post::height_function(h));
+  return [heights, scale](const Vec3& x) {
+    double least = std::numeric_limits<double>::infinity();
+    for (const auto& h : heights) least = std::min(least, h(x));
+    return least / scale;
   };
 }
 

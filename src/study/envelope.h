@@ -18,6 +18,7 @@
 
 #include "mesh/trimesh.h"
 #include "post/fluid_metric.h"
+#include "post/wall_metric.h"
 #include "remesh/adapt.h"
 #include "volume/interior_size.h"
 
@@ -121,5 +122,13 @@ volume::InteriorSizeOptions level_interior(const volume::InteriorSizeOptions& co
 // flow's sizes (post/fluid_metric.h, as the flow kind's volume had them); 0 where none has a size.
 std::function<double(const Vec3&)> least_flow_interior(std::vector<post::FluidSizes> sizes,
                                                        const std::vector<double>& factors);
+
+// The boundary layer's first height that level k asks at a point (volume::BoundaryLayerOptions::
+// first_height): the least of the compared flow kinds' (their sources' wall shear at the study's y+,
+// post::first_layer_heights) divided by `scale`, so that the level's layer, its heights that many
+// times thinner over the same thickness (level_layers), stays under theirs where their layer was thinned
+// for it; null without flow kinds. (A level's thickness so capped is the flow kind's: the first height
+// over the first layer's share is the same.)
+std::function<double(const Vec3&)> level_first_height(const std::vector<post::WallHeights>& flows, double scale);
 
 }  // namespace vesselmesh::study

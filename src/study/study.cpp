@@ -342,10 +342,11 @@ struct Envelope {
   std::vector<double> sizes;
   double interior_factor = 1.0;
   std::function<double(const Vec3&)> flow;  // the flow kinds' interiors (envelope.h: least_flow_interior)
+  std::vector<post::WallHeights> first_heights;  // the flow kinds' layers (envelope.h: level_first_height)
   std::string key;
 };
-Envelope make_envelope(const TriMesh& surface, const std::vector<MeshRun>& made, double gradation,
-                       const Reporter& reporter) {
+Envelope make_envelope(const TriMesh& surface, const std::vector<MeshRun>& made, const StudyConfig& config,
+                       const flow::FlowCase& base_case, const Reporter& reporter) {
   Envelope out;
   std::vector<TriMesh> walls;
   std::vector<double> compared_factors, flow_factors;
@@ -359,16 +360,18 @@ Envelope make_envelope(const TriMesh& surface, const std::vector<MeshRun>& made,
     compared_factors.push_back(done.interior_size);
     if (done.adapted_from.empty()) continue;  // a flow kind: its interior as its volume had it
     const std::string source = (fs::path(done.folder).parent_path() / done.adapted_from).string();
-    flows.push_back(post::fluid_error_sizes(source + "/flow", {}, gradation, {}, reporter));
+    flows.push_back(post::fluid_error_sizes(source + "/flow", {}, config.interior.gradation, {}, reporter));
     flow_factors.push_back(done.interior_size);
-    out.key += fmt::format("its interior from {} {}\n", done.adapted_from,
+    if (config.flow_y_plus > 0.0)
+      out.first_heights.push_back(post::first_layer_heights(source + "/flow", {}, config.flow_y_plus,
+                                                            {base_case.density, base_case.viscosity}, reporter));
+    out.key += fmt::format("its interior and layer (y+ {}) from {} {}\n", config.flow_y_plus, done.adapted_from,
                            fingerprint(io::read_file(source + "/stamp.json")));
   }
   if (!flows.empty()) out.flow = least_flow_interior(std::move(flows), flow_factors);
   std::vector<const TriMesh*> meshes;
   for (const TriMesh& w : walls) meshes.push_back(&w);
-  reporter.info(fmt::format("study: the reference's sizes: the least of the {} compared meshes' at each point",
-                            meshes.size()));
+  reporter.info(fmt::format("study: the reference's sizes: the least of the {} compared meshes'", meshes.size()));
   out.sizes = envelope_sizes(surface, meshes);
   out.interior_factor = envelope_interior_factor(surface, meshes, compared_factors, out.sizes);
   return out;
@@ -376,29 +379,30 @@ Envelope make_envelope(const TriMesh& surface, const std::vector<MeshRun>& made,
 
 // A mesh's volume: its wall's boundary layer (`layer_design`) and interior, sized to `volume_points`
 // nodes when that is positive (the first compared mesh's).
-volume::VolumeResult make_volume(const TriMesh& wall, const StudyConfig& config, const LevelLayers& layer_design,
-                                 const volume::InteriorSizeOptions& interior,
-                                 const std::vector<volume::EndAt>& end_at, int volume_points,
-                                 const std::string& name, const std::string& flow_dir, const Reporter& reporter) {
-  const centerline::DistanceMap wall_distance =
-      centerline::distance_map(wall, centerline::extract(wall, {}, reporter));
+volume::VolumeResult make_volume(const TriMesh& wall, const StudyConfig& config, const flow::FlowCase& base_case,
+                                 const LevelLayers& layer_design, const volume::InteriorSizeOptions& interior,
+                                 const std::vector<volume::EndAt>& end_at, int volume_points, const std::string& name,
+                                 const std::string& flow_dir, std::function<double(const Vec3&)> first_height,
+                                 const Reporter& reporter) {
+  const centerline::DistanceMap wall_distance = centerline::distance_map(wall, centerline::extract(wall, {}, reporter));
   volume::VolumeOptions vo;
-  vo.layer.layers = layer_design.layers;
-  vo.layer.growth = layer_design.growth;
-  vo.layer.thickness_ratio = config.thickness_ratio;
-  vo.layer.min_angle_deg = config.layer_angle;
-  vo.layer.split_angle_deg = config.layer_split_angle;
+  vo.layer = {.layers = layer_design.layers, .thickness_ratio = config.thickness_ratio, .growth = layer_design.growth,
+              .min_angle_deg = config.layer_angle, .split_angle_deg = config.layer_split_angle,
+              .first_height = std::move(first_height)};
   vo.algorithm = volume::parse_fill_algorithm(config.algorithm);
   vo.interior = interior;
-  if (!flow_dir.empty())  // the flow kind: its interior sized by the velocity's error (post/fluid_metric.h)
+  if (!flow_dir.empty()) {  // the flow kind: its interior by the velocity's error, its layer by the wall shear
     vo.interior.flow =
         post::size_function(post::fluid_error_sizes(flow_dir, {}, interior.gradation, {}, reporter));
+    if (config.flow_y_plus > 0.0)
+      vo.layer.first_height = post::height_function(post::first_layer_heights(
+          flow_dir, {}, config.flow_y_plus, {base_case.density, base_case.viscosity}, reporter));
+  }
   vo.inlet = config.inlet;
   vo.end_names = config.end_names;
   vo.end_at = end_at;
   if (volume_points > 0)
-    reporter.info(fmt::format("study: {}: its volume sized to {} nodes, as the first compared mesh's", name,
-                              volume_points));
+    reporter.info(fmt::format("study: {}: its volume sized to {} nodes, the first compared's", name, volume_points));
   return volume_points > 0 ? volume::build_volume_with_points(wall, analysis::open_ends(wall), wall_distance.radius,
                                                            vo, volume_points, 0.02, reporter)
                            : volume::build_volume(wall, analysis::open_ends(wall), wall_distance.radius, vo, reporter);
@@ -632,13 +636,15 @@ StudyConfig parse_study(const std::string& text, const std::string& path) {
   if (const toml::table* t = root["volume"].as_table()) {
     r.known_keys(*t, "volume", {"layers", "thickness_ratio", "layer_angle", "layer_split_angle", "algorithm",
                                 "inlet", "end_names", "interior_size", "interior_gradation",
-                                "equal_volume_nodes"});
+                                "equal_volume_nodes", "flow_y_plus"});
     const io::TomlView v = root["volume"];
     c.layers = r.integer(v["layers"], "volume.layers", c.layers, 0);
     c.thickness_ratio = r.number(v["thickness_ratio"], "volume.thickness_ratio", c.thickness_ratio);
     c.layer_angle = r.number(v["layer_angle"], "volume.layer_angle", c.layer_angle);
     if (!(c.layer_angle >= 0.0 && c.layer_angle <= 30.0)) r.fail("volume.layer_angle", "give 0 to 30 degrees");
     c.layer_split_angle = r.number(v["layer_split_angle"], "volume.layer_split_angle", c.layer_split_angle);
+    c.flow_y_plus = r.number(v["flow_y_plus"], "volume.flow_y_plus", c.flow_y_plus);
+    if (!(c.flow_y_plus >= 0.0 && std::isfinite(c.flow_y_plus))) r.fail("volume.flow_y_plus", "give a y+ >= 0");
     if (!(c.layer_split_angle >= 0.0 && c.layer_split_angle <= 30.0))
       r.fail("volume.layer_split_angle", "give 0 to 30 degrees (0: the wall's triangles as meshed)");
     c.algorithm = r.text(v["algorithm"], "volume.algorithm", c.algorithm);
@@ -763,15 +769,13 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
     run.folder = (fs::path(folder) / name).string();
     fs::create_directories(run.folder);
     const int volume_points = run.series ? 0 : volume_target;
-    // An envelope level k: its sizes factor^(k-1) finer than the envelope's (the margin beside), its
-    // layer and interior too.
+    // An envelope level k: its sizes, layer and interior factor^(k-1) finer than the envelope's (margin beside).
     const bool envelope_level = run.series && envelope_series;
     const double scale =
         envelope_level_scale(config.factor, static_cast<int>(m + 1 - config.kinds.size()), config.levels);
     if (envelope_level && envelope.sizes.empty())
-      envelope = make_envelope(surface, result.meshes, config.interior.gradation, reporter);
-    const LevelLayers layer_design =
-        envelope_level ? level_layers(config.layers, scale) : LevelLayers{config.layers, 1.0};
+      envelope = make_envelope(surface, result.meshes, config, base_case, reporter);
+    const LevelLayers layer_design = envelope_level ? level_layers(config.layers, scale) : LevelLayers{config.layers};
     const volume::InteriorSizeOptions interior =
         envelope_level ? level_interior(config.interior, envelope.interior_factor, scale, envelope.flow)
                        : config.interior;
@@ -785,8 +789,8 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
     const MeshRun* source = kind == sizing::SizeKind::flow ? &flow_source(result.meshes, name) : nullptr;
     if (source) run.adapted_from = source->name;
     if (source)
-      what += fmt::format("flow from {} {} (wall and interior)\n", source->name,
-                          fingerprint(io::read_file(source->folder + "/stamp.json")));
+      what += fmt::format("flow from {} {} (wall, interior, layer at y+ {})\n", source->name,
+                          fingerprint(io::read_file(source->folder + "/stamp.json")), config.flow_y_plus);
     const std::string mesh_key = fingerprint(common + what);
     const std::string flow_key = fingerprint(mesh_key + case_text);
     const std::string surface_file = run.folder + "/surface.vtp", volume_file = run.folder + "/volume.msh";
@@ -822,8 +826,9 @@ StudyResult run_study(const StudyConfig& config, const std::string& folder, cons
       reporter.info(fmt::format("study: {}: volume mesh", name));
       step = Clock::now();
       const volume::VolumeResult volume_mesh =
-          make_volume(remeshed.mesh, config, layer_design, interior, end_at, volume_points, name,
-                      source ? source->folder + "/flow" : std::string(), reporter);
+          make_volume(remeshed.mesh, config, base_case, layer_design, interior, end_at, volume_points, name,
+                      source ? source->folder + "/flow" : std::string(),
+                      envelope_level ? level_first_height(envelope.first_heights, scale) : nullptr, reporter);
       io::write_msh(volume_file, volume_mesh.mesh);
       const volume::VolumeQuality quality = volume::measure_volume(volume_mesh.mesh, volume_mesh.radius);
       run.seconds["volume"] = since(step);

@@ -46,7 +46,9 @@
 //               end_names = ["inlet", "outlet_1", ...], interior_size = 1.0 and
 //               interior_gradation = 1.3 (volume/interior_size.h: the same interior field for
 //               every mesh, so that equal surface counts give comparable volumes),
-//               equal_volume_nodes = true (each compared mesh after the first has its interior's
+//               flow_y_plus = 1 (the flow kinds' layer no higher at its first height than this y+ in
+//               their source flow's largest wall shear, post::first_layer_heights; 0: the layer as
+//               the others'), equal_volume_nodes = true (each compared mesh after the first has its interior's
 //               size factor scaled until its volume has the first's node count within 2 %:
 //               volume::build_volume_with_points; the factor used is in Table 1)
 //   [post]      time = 0.21 (s; default the last saved)
@@ -98,6 +100,7 @@ struct StudyConfig {
   double thickness_ratio = 0.1;
   double layer_angle = 0.0;        // degrees: volume::BoundaryLayerOptions::min_angle_deg
   double layer_split_angle = 0.0;  // degrees: volume::BoundaryLayerOptions::split_angle_deg
+  double flow_y_plus = 1.0;        // the flow kinds' first layer height (post::first_layer_heights); 0: none
   std::string algorithm = "delaunay";
   volume::InteriorSizeOptions interior;
   bool equal_volume_nodes = true;  // the compared meshes' volumes of the first one's node count

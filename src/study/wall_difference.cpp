@@ -53,17 +53,6 @@ std::vector<T> interpolated(const WallMap& map, const std::vector<T>& field) {
 
 }  // namespace
 
-std::array<double, 3> barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 n = (b - a).cross(c - a);
-  const double area = n.squaredNorm();
-  if (!(area > 0.0)) return {1.0 / 3, 1.0 / 3, 1.0 / 3};
-  std::array<double, 3> l = {(c - b).cross(p - b).dot(n) / area, (a - c).cross(p - c).dot(n) / area, 0.0};
-  l[0] = std::clamp(l[0], 0.0, 1.0);
-  l[1] = std::clamp(l[1], 0.0, 1.0 - l[0]);
-  l[2] = 1.0 - l[0] - l[1];
-  return l;
-}
-
 WallMap map_onto(const TriMesh& source, const TriMesh& target) {
   const mesh::SurfaceLocator locator(source);
   WallMap map;
@@ -73,7 +62,7 @@ WallMap map_onto(const TriMesh& source, const TriMesh& target) {
     const mesh::SurfaceLocator::Hit hit = locator.closest(target.points[i]);
     const Triangle& f = source.triangles[hit.triangle];
     map.corners[i] = f;
-    map.weights[i] = barycentric(hit.point, source.points[f[0]], source.points[f[1]], source.points[f[2]]);
+    map.weights[i] = mesh::barycentric(hit.point, source.points[f[0]], source.points[f[1]], source.points[f[2]]);
   });
   return map;
 }

@@ -15,10 +15,6 @@
 
 namespace vesselmesh::study {
 
-// The barycentric coordinates of p's projection onto the plane of triangle (a, b, c), clamped to
-// the triangle (non-negative, summing to one); a third each for a degenerate triangle.
-std::array<double, 3> barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
-
 // Where each point of `target` falls on `source`: its closest point's triangle corners and their
 // linear weights.
 struct WallMap {

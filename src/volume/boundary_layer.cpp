@@ -79,12 +79,15 @@ std::vector<Vec3> column_directions(const TriMesh& wall, const mesh::EdgeMap& ed
 // least dihedral angle is atan(h / a) when the column stands straight; a column leaning from
 // the triangle's normal shortens h by the cosine. The thinnest layer counts.
 std::vector<double> angle_floors(const TriMesh& wall, const std::vector<Vec3>& direction,
-                                 const std::vector<double>& fraction, double angle_deg) {
+                                 const std::vector<double>& fraction, int levels, double angle_deg) {
   std::vector<double> floor(wall.num_points(), 0.0);
   if (!(angle_deg > 0.0)) return floor;
-  double step = 1.0;
-  for (size_t k = 0; k + 1 < fraction.size(); ++k) step = std::min(step, fraction[k + 1] - fraction[k]);
-  const double slope = std::tan(angle_deg * std::numbers::pi / 180.0) / step;
+  std::vector<double> slope(wall.num_points());  // per point: its thinnest layer's share of the thickness
+  for (int v = 0; v < wall.num_points(); ++v) {
+    double step = 1.0;
+    for (int k = 0; k + 1 < levels; ++k) step = std::min(step, fraction[v * levels + k + 1] - fraction[v * levels + k]);
+    slope[v] = std::tan(angle_deg * std::numbers::pi / 180.0) / step;
+  }
   for (const Triangle& f : wall.triangles) {
     const Vec3 cross = (wall.points[f[1]] - wall.points[f[0]]).cross(wall.points[f[2]] - wall.points[f[0]]);
     double shortest = std::numeric_limits<double>::infinity();
@@ -92,9 +95,42 @@ std::vector<double> angle_floors(const TriMesh& wall, const std::vector<Vec3>& d
     if (!(cross.norm() > 0.0 && shortest > 0.0)) continue;
     const double altitude = cross.norm() / shortest;
     const Vec3 inward = -cross.normalized();
-    for (int v : f) floor[v] = std::max(floor[v], slope * altitude / std::max(0.3, direction[v].dot(inward)));
+    for (int v : f) floor[v] = std::max(floor[v], slope[v] * altitude / std::max(0.3, direction[v].dot(inward)));
   }
   return floor;
+}
+
+// The first height asked (options.first_height, graded along the wall at the shrink's slope) where it
+// is below the first layer's: the layers at that point grow from it by the growth that fills the
+// thickness in as many layers, up to kMostFirstGrowth; beyond that, the thickness too is cut to what
+// that growth fills from it. Points so changed: out.capped_vertices.
+constexpr double kMostFirstGrowth = 2.0;
+void first_heights(const TriMesh& wall, const BoundaryLayerOptions& options, double slope_growth, BoundaryLayer& out,
+                   std::vector<double>& fraction) {
+  const int n = wall.num_points(), levels = out.levels;
+  std::vector<double> asked(n, 1e300);
+  for (int v = 0; v < n; ++v)
+    if (const double h = options.first_height(wall.points[v]); h > 0.0 && std::isfinite(h)) asked[v] = h;
+  sizing::grade_sizes(wall, asked, slope_growth);
+  const double least_share = layer_fractions(options.layers, kMostFirstGrowth)[1];
+  for (int v = 0; v < n; ++v) {
+    const double share = asked[v] / out.target[v];
+    if (!(share < fraction[v * levels + 1] * (1.0 - 1e-9))) continue;
+    ++out.capped_vertices;
+    double g = kMostFirstGrowth;
+    if (share > least_share) {  // the first share falls as the growth rises: bisection
+      double low = std::max(options.growth, 1.0), high = kMostFirstGrowth;
+      for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (low + high);
+        (layer_fractions(options.layers, mid)[1] > share ? low : high) = mid;
+      }
+      g = 0.5 * (low + high);
+    } else {
+      out.target[v] = asked[v] / least_share;
+    }
+    const std::vector<double> f = layer_fractions(options.layers, g);
+    std::copy(f.begin(), f.end(), fraction.begin() + v * levels);
+  }
 }
 
 }  // namespace
@@ -172,11 +208,17 @@ BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double
                                    mesh::format_point(wall.points[v])));
     out.target[v] = options.thickness_ratio * radius[v];
   }
-  const std::vector<double> fraction = layer_fractions(options.layers, options.growth);
+  const int levels = out.levels;
+  const std::vector<double> uniform = layer_fractions(options.layers, options.growth);
+  // Per wall point its levels' fractions of the thickness (point v's from v x levels): the options'
+  // growth, or where a first height is asked below the first layer's, the growth that makes it so.
+  std::vector<double> fraction(static_cast<size_t>(n) * levels);
+  for (int v = 0; v < n; ++v) std::copy(uniform.begin(), uniform.end(), fraction.begin() + v * levels);
   const double growth = std::exp(options.shrink_slope);
+  if (options.first_height) first_heights(wall, options, growth, out, fraction);
   // The thickness to start from: the target, or more where the angle floor asks (5 % above it,
   // spread to the neighbours with the shrink's slope, at most half the radius).
-  out.angle_floor = angle_floors(wall, out.direction, fraction, options.min_angle_deg);
+  out.angle_floor = angle_floors(wall, out.direction, fraction, levels, options.min_angle_deg);
   auto start_from = [&](const std::vector<double>& floor) {
     std::vector<double> spread(n), start = out.target;
     for (int v = 0; v < n; ++v) spread[v] = -1.05 * floor[v];
@@ -184,7 +226,6 @@ BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double
     for (int v = 0; v < n; ++v) start[v] = std::max(start[v], std::min(-spread[v], 0.5 * radius[v]));
     return start;
   };
-  const int levels = out.levels;
   out.points.resize(static_cast<size_t>(levels) * n);
   // The prism over wall triangle f between levels k and k + 1.
   auto level_prism = [n](const Triangle& f, int k) -> Prism {
@@ -192,7 +233,8 @@ BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double
   };
   auto place = [&](const std::vector<double>& thickness) {
     for (int k = 0; k < levels; ++k)
-      for (int v = 0; v < n; ++v) out.points[k * n + v] = wall.points[v] + fraction[k] * thickness[v] * out.direction[v];
+      for (int v = 0; v < n; ++v)
+        out.points[k * n + v] = wall.points[v] + fraction[v * levels + k] * thickness[v] * out.direction[v];
   };
 
   // The strips at the ends: side quads (u_k, u_k+1, v_k+1, v_k) of each loop edge u -> v, cut
@@ -276,7 +318,8 @@ BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double
         bool ok = true;
         for (int k = 0; ok && k + 1 < levels; ++k) {
           const Prism p = level_prism(f, k);
-          const double height = (fraction[k + 1] - fraction[k]) * (limit[f[0]] + limit[f[1]] + limit[f[2]]) / 3.0;
+          double height = 0.0;  // the prism's mean
+          for (int v : f) height += (fraction[v * levels + k + 1] - fraction[v * levels + k]) * limit[v] / 3.0;
           for (const Tet& t : mesh::split_prism(p))
             if (mesh::tet_volume6(out.points[t[0]], out.points[t[1]], out.points[t[2]], out.points[t[3]]) <
                 0.05 * base.norm() * height)

@@ -29,6 +29,7 @@
 #include "mesh/tetmesh.h"
 #include "mesh/trimesh.h"
 
+#include <functional>
 #include <vector>
 
 namespace vesselmesh::volume {
@@ -49,6 +50,12 @@ struct BoundaryLayerOptions {
   // edge halved and the layer is built again (split_long_edges; build_volume does it); the
   // thickness stays as asked. 0: the wall's triangles as given.
   double split_angle_deg = 5.0;
+  // Where set, the first layer's height asked at a wall point (its units; <= 0 or not finite: none),
+  // graded along the wall with the shrink's slope: where it is below the first layer's, the layers there
+  // grow from it by the growth that fills the same thickness in as many layers (up to 2; beyond, the
+  // thickness is cut to what growth 2 fills). The flow kind's height from the wall shear
+  // (post::first_layer_heights).
+  std::function<double(const Vec3&)> first_height = nullptr;
 };
 
 // An open end of the wall: its boundary loop (wall vertex indices, in the direction of the
@@ -70,8 +77,10 @@ struct BoundaryLayer {
   // the end's normal) and the inner loop (level N), in the wall loop's direction.
   std::vector<std::vector<Triangle>> end_strips;
   std::vector<std::vector<int>> inner_loops;
-  // Per wall vertex: the thickness built and the one asked for (ratio x radius).
+  // Per wall vertex: the thickness built and the one asked for (ratio x radius, or less where the first
+  // height asks for more than growth 2 gives); `capped_vertices`: those whose layers the first height changed.
   std::vector<double> thickness, target;
+  int capped_vertices = 0;
   // Per wall vertex: the thickness its prisms need for min_angle_deg (0 without that goal):
   // estimated from the wall's triangles, raised where the built prisms fell short.
   std::vector<double> angle_floor;

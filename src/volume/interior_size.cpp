@@ -9,20 +9,6 @@
 #include <cmath>
 
 namespace vesselmesh::volume {
-namespace {
-
-// Barycentric coordinates of p (a point of triangle abc) against its corners.
-std::array<double, 3> barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 n = (b - a).cross(c - a);
-  const double area2 = n.squaredNorm();
-  if (!(area2 > 0.0)) return {1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0};
-  const double wa = (c - b).cross(p - b).dot(n) / area2;
-  const double wb = (a - c).cross(p - c).dot(n) / area2;
-  return {wa, wb, 1.0 - wa - wb};
-}
-
-}  // namespace
-
 void check_interior_size_options(const InteriorSizeOptions& o) {
   if (!(o.factor > 0.0 && std::isfinite(o.factor)))
     throw OptionError(fmt::format("--interior-size {}: give a factor > 0 (1: the wall's area-equivalent size)", o.factor));
@@ -72,7 +58,7 @@ InteriorSize::InteriorSize(const TriMesh& wall, const std::vector<double>& radiu
 double InteriorSize::at(const Vec3& x) const {
   const mesh::SurfaceLocator::Hit hit = locator_.closest(x);
   const Triangle& f = wall_.triangles[hit.triangle];
-  const auto w = barycentric(hit.point, wall_.points[f[0]], wall_.points[f[1]], wall_.points[f[2]]);
+  const auto w = mesh::barycentric(hit.point, wall_.points[f[0]], wall_.points[f[1]], wall_.points[f[2]]);
   double h = 0.0, r = 0.0, t = 0.0;
   for (int k = 0; k < 3; ++k) {
     const double wk = std::clamp(w[k], 0.0, 1.0);

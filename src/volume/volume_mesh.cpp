@@ -218,6 +218,11 @@ VolumeResult build_volume(const TriMesh& surface, const std::vector<analysis::Op
     inner_loops = layer.inner_loops;
     strips = layer.end_strips;
     report.shrunk_vertices = layer.shrunk_vertices;
+    report.first_height_capped = layer.capped_vertices;
+    if (layer.capped_vertices > 0)
+      reporter.info(fmt::format("boundary layer: its first layer lowered to the height asked at {} of {} wall "
+                                "points (its layers growing faster, or the layer thinner where growth 2 would not do)",
+                                layer.capped_vertices, wall.mesh.num_points()));
     report.least_fraction = layer.least_fraction;
     report.least_at = layer.least_at;
     report.thickened_vertices = layer.thickened_vertices;
@@ -376,6 +381,8 @@ VolumeResult build_volume_with_points(const TriMesh& surface, const std::vector<
   constexpr int kBuilds = 4;
   VolumeOptions o = options;
   VolumeResult result = build_volume(surface, ends, radius, o, reporter);
+  double last_factor = 0.0;
+  int last_interior = 0;
   for (int build = 1;; ++build) {
     const int points = result.mesh.num_points(), interior = result.report.interior_points;
     if (std::abs(points - target_points) <= tolerance * target_points || build == kBuilds) break;
@@ -384,9 +391,20 @@ VolumeResult build_volume_with_points(const TriMesh& surface, const std::vector<
       throw InputError(fmt::format("a volume of {} points cannot be made: the boundary layer and the caps alone have "
                                    "{} (ask for more points, or fewer layers)",
                                    target_points, points - interior));
-    // Points inside go as the size to the power -3; the step is bounded, so that a count the
-    // fill cannot follow (a tiny interior) does not send the factor far.
-    const double scale = std::clamp(std::cbrt(static_cast<double>(std::max(interior, 1)) / wanted), 0.5, 2.0);
+    // Points inside go as the size to the power -3, or as the last two builds say (the exponent
+    // through them, where it lies between -6 and -1: the fill's count is not smooth in the size,
+    // and the flow kind's interior, graded from its own sizes, follows the factor less than a cube:
+    // on the small study's, -3 went 4327 -> 6239 -> 5318 -> 5729 for 5590); the step is bounded,
+    // so that a count the fill cannot follow (a tiny interior) does not send the factor far.
+    double exponent = -3.0;
+    if (last_interior > 0 && interior > 0 && last_factor != o.interior.factor) {
+      const double through = std::log(static_cast<double>(interior) / last_interior) /
+                             std::log(o.interior.factor / last_factor);
+      if (through >= -6.0 && through <= -1.0) exponent = through;
+    }
+    const double scale =
+        std::clamp(std::pow(static_cast<double>(wanted) / std::max(interior, 1), 1.0 / exponent), 0.5, 2.0);
+    last_factor = o.interior.factor, last_interior = interior;
     o.interior.factor *= scale;
     reporter.info(fmt::format("volume: {} points for {} asked: the interior's size factor {:.4g} -> {:.4g}", points,
                               target_points, o.interior.factor / scale, o.interior.factor));

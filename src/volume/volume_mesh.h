@@ -74,6 +74,7 @@ struct VolumeReport {
   // The interior size field at the wall's points (mm): least, median, largest.
   double interior_size_min = 0.0, interior_size_median = 0.0, interior_size_max = 0.0;
   int shrunk_vertices = 0;     // wall points whose layer is thinner than asked
+  int first_height_capped = 0;  // wall points whose layer the first height asked made thinner (layer.first_height)
   SliverReport slivers;        // the interior's clean-up
   double least_fraction = 1.0;  // of the thickness asked for, and where
   Vec3 least_at = Vec3::Zero();

@@ -5,6 +5,7 @@
 #include "io/surface.h"
 #include "io/volume_file.h"
 #include "post/fluid_metric.h"
+#include "study/resolution.h"
 #include "io/vtk_formats.h"
 #include "mesh/connectivity.h"
 #include "synth/shapes.h"
@@ -567,6 +568,37 @@ TEST(Cli, RemeshAndVolumeToAFlowRefineTheNozzlesThroatAndJet) {
   EXPECT_GT(jet, 4.0 * inlet);
   ASSERT_EQ(volume_to("f_again.msh").code, 0);
   EXPECT_EQ(read_text(tmp.path("f.msh")), read_text(tmp.path("f_again.msh")));
+  EXPECT_EQ(vj["first_height_capped"], 0) << "y+ 1 asks no thinner than the layer's 0.025 mm in the throat at Re 100";
+
+  // The first layer from the wall shear at y+ 0.3: y = 0.3 mu / sqrt(rho |WSS|), 0.021 mm at the throat's
+  // largest WSS; thinner there than the layer's 0.025 mm (a tenth of R = 1 mm over 4 layers), as asked in
+  // the inlet pipe (R = 2 mm: 0.05 mm). (--layer-angle 0 and --layer-split-angle 0: else the layer thickens
+  // over the wall's 0.3 mm triangles for its angles, the geometric volume's to 0.038 mm in the throat,
+  // whatever the height asked, or its wall gains points.)
+  const RunResult thin =
+      run({"volume", tmp.path("wall.vtp"), "--flow", tmp.path("flow"), "--layer-y-plus", "0.3", "--layer-angle", "0",
+           "--layer-split-angle", "0", "--json", "-q", "-o", tmp.path("thin.msh")});
+  ASSERT_EQ(thin.code, 0) << thin.err;
+  const Json tj = thin.json();
+  double largest = 0.0;
+  for (const Field& f : io::read_vtk_surface(tmp.path("flow/wall_000000.vtp"), io::VtkFormat::vtp).point_data)
+    if (f.name == "wss")
+      for (size_t i = 0; i < f.values.size(); i += 3)
+        largest = std::max(largest, std::hypot(f.values[i], f.values[i + 1], f.values[i + 2]));
+  EXPECT_NEAR(tj["interior_size"]["flow"]["least_first_height_mm"].get<double>(),
+              0.3 * 0.0035 / std::sqrt(1060.0 * largest) / 1e-3, 1e-5);
+  EXPECT_GT(tj["first_height_capped"].get<int>(), 0);
+  const auto mean_first = [](const TetMesh& m, double z_low, double z_high) {
+    const std::vector<double> h = study::first_heights(m);
+    double sum = 0.0;
+    int count = 0;
+    for (size_t v = 0; v < h.size(); ++v)
+      if (std::isfinite(h[v]) && m.points[v].z() > z_low && m.points[v].z() < z_high) sum += h[v], ++count;
+    return sum / count;
+  };
+  const TetMesh thinned = io::read_volume(tmp.path("thin.msh"));
+  EXPECT_LT(mean_first(thinned, -3.5, -0.5), 0.9 * 0.025);
+  EXPECT_NEAR(mean_first(thinned, -10.7, -8.0), 0.05, 0.05 * 0.05);
 
   const auto refused = [&](std::vector<std::string> args, const std::string& part) {
     const RunResult r = run(args);
@@ -576,7 +608,7 @@ TEST(Cli, RemeshAndVolumeToAFlowRefineTheNozzlesThroatAndJet) {
     EXPECT_FALSE(std::filesystem::exists(tmp.path("bad.msh")));
   };
   refused({"volume", tmp.path("wall.vtp"), "--flow-time", "0", "-o", tmp.path("bad.msh")},
-          "--flow-time and --error-norm go with --flow");
+          "--flow-time, --error-norm and --layer-y-plus go with --flow");
   refused({"volume", tmp.path("wall.vtp"), "--flow", tmp.path("n.msh"), "-o", tmp.path("bad.msh")}, "fluid.pvd");
   refused({"volume", tmp.path("wall.vtp"), "--flow", tmp.path("flow"), "--flow-time", "2", "-o", tmp.path("bad.msh")},
           "outside the saved results");

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 namespace vesselmesh::mesh {
@@ -38,6 +39,17 @@ TEST(Geometry, ClosestPointOnTriangleInEveryRegion) {
   }
   // A degenerate triangle gives a point, not NaN.
   EXPECT_TRUE(closest_point_on_triangle(Vec3(1, 1, 1), a, a, a).allFinite());
+}
+
+TEST(Geometry, BarycentricCoordinatesAreClampedToTheTriangle) {
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  const auto l = barycentric(Vec3(0.25, 0.5, 0.3), a, b, c);  // above the plane: its projection
+  EXPECT_NEAR(l[0], 0.25, 1e-12);
+  EXPECT_NEAR(l[1], 0.25, 1e-12);
+  EXPECT_NEAR(l[2], 0.5, 1e-12);
+  const auto out = barycentric(Vec3(2, 2, 0), a, b, c);
+  EXPECT_GE(std::min({out[0], out[1], out[2]}), 0.0);
+  EXPECT_NEAR(out[0] + out[1] + out[2], 1.0, 1e-12);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
 namespace vesselmesh::post {
 namespace {
@@ -74,6 +75,45 @@ TEST(WallMetric, RefusesFramesOnDifferentWallsAndAUniformWss) {
   test::TemporaryFolder uniform;
   write_results(uniform, wall, {0.0}, "");
   EXPECT_THROW(wall_error_metric(uniform.folder().string(), {}), InputError);
+}
+
+TEST(WallMetric, FirstLayerHeightsAreTheViscousLengthOfTheLargestShear) {
+  // WSS amplitude z^2 at 0.1 s, 5 z^2 at 0.2 s (z in cm): the largest 5 z^2 Pa; rho 1000, mu 0.004:
+  // y = y+ mu / sqrt(rho 5 z^2) metres, in mm.
+  const TriMesh wall = synth::cylinder({.radius = 3.0, .length = 10.0, .resolution = 0.5, .jitter = 0.3});
+  test::TemporaryFolder tmp;
+  write_results(tmp, wall, {1.0, 5.0},
+                R"(, "fluid": {"density_kg_m3": 1000.0, "viscosity_Pa_s": 0.004})");
+  const WallHeights h = first_layer_heights(tmp.folder().string(), {}, 2.0);
+  ASSERT_EQ(h.heights.size(), wall.points.size());
+  ASSERT_EQ(h.times.size(), 1u) << "a steady flow's last frame alone";
+  EXPECT_NEAR(h.times[0], 0.2, 1e-12);
+  const std::function<double(const Vec3&)> at = height_function(h);
+  for (size_t v = 0; v < wall.points.size(); ++v) {
+    const double z = wall.points[v].z();
+    if (z < 1.0) continue;  // the shear vanishes at z = 0: no height asked (a huge one)
+    const double expected = 2.0 * 0.004 / std::sqrt(1000.0 * 5.0 * z * z) / 1e-3;
+    EXPECT_NEAR(h.heights[v], expected, 1e-9 * expected) << "at z = " << z;
+    EXPECT_NEAR(h.wall.points[v].z(), 10.0 * z, 1e-9) << "the wall in mm";
+    EXPECT_NEAR(at(h.wall.points[v]), expected, 1e-6 * expected) << "the field at the wall point";
+  }
+  // Linear over the closest triangle: at a triangle's centroid, 0.5 mm outside it, its corners' mean.
+  for (const Triangle& t : h.wall.triangles) {
+    const Vec3 a = h.wall.points[t[0]], b = h.wall.points[t[1]], c = h.wall.points[t[2]];
+    const Vec3 outward = (b - a).cross(c - a).normalized();
+    const double mean = (h.heights[t[0]] + h.heights[t[1]] + h.heights[t[2]]) / 3.0;
+    EXPECT_NEAR(at((a + b + c) / 3.0 + 0.5 * outward), mean, 1e-9 * mean);
+  }
+  // Both frames bounded together (the times given): the largest shear of the two.
+  EXPECT_EQ(first_layer_heights(tmp.folder().string(), {0.1, 0.2}).times.size(), 2u);
+  EXPECT_THROW(first_layer_heights(tmp.folder().string(), {}, 0.0), OptionError);
+  write_results(tmp, wall, {1.0}, "");  // a summary that names no fluid: the caller's (the study's case), or none
+  EXPECT_THROW(first_layer_heights(tmp.folder().string(), {}), InputError);
+  const WallHeights given =
+      first_layer_heights(tmp.folder().string(), {}, 1.0, {.density = 4000.0, .viscosity = 0.004});
+  for (size_t v = 0; v < wall.points.size(); ++v)
+    if (wall.points[v].z() > 1.0)  // |WSS| = z^2: y = mu / sqrt(rho z^2)
+      EXPECT_NEAR(given.heights[v], 0.004 / std::sqrt(4000.0) / wall.points[v].z() / 1e-3, 1e-12);
 }
 
 }  // namespace

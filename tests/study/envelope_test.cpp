@@ -1,5 +1,6 @@
 #include "study/envelope.h"
 
+#include "analysis/open_ends.h"
 #include "centerline/distance_map.h"
 #include "centerline/extract.h"
 #include "analysis/curvature.h"
@@ -10,6 +11,7 @@
 #include "remesh/adapt.h"
 #include "sizing/metric.h"
 #include "sizing/size_field.h"
+#include "synth/shapes.h"
 #include "volume/boundary_layer.h"
 
 #include "test_support.h"
@@ -86,6 +88,43 @@ TEST(Envelope, LevelLayersDivideTheFirstHeightByTheScale) {
   EXPECT_EQ(level_layers(4, 1.33).layers, 5);  // 5.32: five growing by a little
   EXPECT_GT(level_layers(4, 1.33).growth, 1.0);
   EXPECT_EQ(level_layers(0, 2.0).layers, 0);
+}
+
+// Level k's layer under every compared flow kind's where their first height thinned it: two flow kinds
+// asking 0.02 mm for z < 8 and 0.05 for z < 14 on a pipe of R = 3 (a layer of 0.3 mm: 0.075 mm first).
+TEST(Envelope, LevelLayerStaysUnderTheFlowKindsThinnedLayers) {
+  const TriMesh wall = synth::cylinder({.radius = 3.0, .length = 20.0, .resolution = 0.5, .jitter = 0.3});
+  std::vector<volume::WallEnd> ends;
+  for (const auto& end : analysis::open_ends(wall)) ends.push_back({end.loop, end.normal});
+  const std::vector<double> radius(wall.points.size(), 3.0);
+  std::vector<post::WallHeights> flows(2);
+  for (int k = 0; k < 2; ++k) {
+    flows[k].wall = wall;
+    for (const Vec3& x : wall.points)
+      flows[k].heights.push_back(k == 0 ? (x.z() < 8.0 ? 0.02 : 1.0) : (x.z() < 14.0 ? 0.05 : 1.0));
+  }
+  EXPECT_FALSE(level_first_height({}, 1.33)) << "no flow kind: no height asked";
+  const auto first = [&](const volume::BoundaryLayerOptions& o) {
+    const volume::BoundaryLayer layer = volume::build_boundary_layer(wall, radius, ends, o);
+    std::vector<double> h;
+    const int n = wall.num_points();
+    for (int v = 0; v < n; ++v) h.push_back((layer.points[n + v] - wall.points[v]).norm());
+    return h;
+  };
+  std::vector<std::vector<double>> compared;
+  for (const post::WallHeights& f : flows)
+    compared.push_back(first({.min_angle_deg = 0.0, .first_height = post::height_function(f)}));
+  const std::vector<double> plain = first({.min_angle_deg = 0.0});
+  for (const double scale : {1.1, 1.1 * 1.33, 1.1 * 1.33 * 1.33}) {
+    const LevelLayers design = level_layers(4, scale);
+    const std::vector<double> level = first({.layers = design.layers, .growth = design.growth, .min_angle_deg = 0.0,
+                                             .first_height = level_first_height(flows, scale)});
+    for (int v = 0; v < wall.num_points(); ++v) {
+      for (const std::vector<double>& c : compared) EXPECT_LE(level[v], c[v] / scale * (1 + 1e-6)) << "scale " << scale;
+      EXPECT_LE(level[v], plain[v] / scale * (1 + 1e-6));
+      if (wall.points[v].z() < 7.0) EXPECT_NEAR(level[v], 0.02 / scale, 0.02 * 0.02 / scale);
+    }
+  }
 }
 
 // Level k's interior: the factor given, and the field's growth and core divided by the scale,

@@ -79,6 +79,7 @@ layers = 2
 thickness_ratio = 0.15
 layer_angle = 5
 layer_split_angle = 4
+flow_y_plus = 0.5
 algorithm = "hxt"
 end_names = ["in", "a", "b"]
 interior_size = 0.8
@@ -114,6 +115,7 @@ point = [0, 3, 0]
   EXPECT_DOUBLE_EQ(c.thickness_ratio, 0.15);
   EXPECT_DOUBLE_EQ(c.layer_angle, 5.0);
   EXPECT_DOUBLE_EQ(c.layer_split_angle, 4.0);
+  EXPECT_DOUBLE_EQ(c.flow_y_plus, 0.5);
   EXPECT_EQ(c.algorithm, "hxt");
   EXPECT_DOUBLE_EQ(c.interior.factor, 0.8);
   EXPECT_DOUBLE_EQ(c.interior.gradation, 1.1);
@@ -180,6 +182,8 @@ TEST(StudyFile, NamesTheKeyOfEveryMistake) {
             std::string::npos);
   EXPECT_DOUBLE_EQ(parse_study(study_text(ring), "s.toml").layer_angle, 0.0);  // the paper's layer by default
   EXPECT_DOUBLE_EQ(parse_study(study_text(ring), "s.toml").layer_split_angle, 0.0);  // and its wall as meshed
+  EXPECT_DOUBLE_EQ(parse_study(study_text(ring), "s.toml").flow_y_plus, 1.0);  // the flow kinds' layer at y+ 1
+  EXPECT_NE(error(study_text("[volume]\nflow_y_plus = -1\n" + ring)).find("volume.flow_y_plus"), std::string::npos);
   EXPECT_TRUE(parse_study(study_text(ring), "s.toml").equal_volume_nodes);  // volumes of equal node counts
   EXPECT_DOUBLE_EQ(parse_study(study_text(ring), "s.toml").extension_length, 0.0);  // no extensions by default
   EXPECT_NE(error(study_text("[extensions]\nlength = -1\n" + ring)).find("extensions.length"), std::string::npos);

@@ -77,6 +77,45 @@ TEST(BoundaryLayer, PipeLayersAreConcentricAndEndFlush) {
   for (size_t e = 0; e < 2; ++e) EXPECT_EQ(layer.end_strips[e].size(), 2u * 4u * p.ends[e].loop.size());
 }
 
+TEST(BoundaryLayer, TheFirstHeightAskedRaisesTheGrowthGradedAlongTheWall) {
+  // R = 3, 4 uniform layers of 0.3 mm (0.075 mm first): asked 0.03 mm for z < 8, nothing beyond. The
+  // layers there grow from 0.03 mm over the same thickness (growth g with (g - 1) / (g^4 - 1) = 0.1);
+  // beyond, the height asked rises at the shrink's slope (0.2 a mm along the wall) to the 0.075 mm.
+  const Pipe p = pipe();
+  const std::vector<double> radius(p.wall.points.size(), 3.0);
+  BoundaryLayerOptions o{.min_angle_deg = 0.0};
+  o.first_height = [](const Vec3& x) { return x.z() < 8.0 ? 0.03 : 0.0; };
+  const BoundaryLayer layer = build_boundary_layer(p.wall, radius, p.ends, o);
+  const int n = p.wall.num_points();
+  int changed = 0;
+  for (int v = 0; v < n; ++v) {
+    const double z = p.wall.points[v].z(), first = (layer.points[n + v] - layer.points[v]).norm();
+    const double inner = (layer.points[4 * n + v] - layer.points[v]).norm();
+    EXPECT_NEAR(inner, 0.3, 0.3 * 0.01) << "the thickness kept at z = " << z;
+    // Graded along the wall's edges: paths at least z - 8 long, at most an edge (0.5, jittered) longer.
+    const double asked = 0.03 + 0.2 * std::max(0.0, z - 8.0);
+    EXPECT_LE(first, std::min(0.075, asked + 0.2 * 0.8) * 1.01) << "at z = " << z;
+    EXPECT_GE(first, std::min(0.075, asked) * 0.99) << "at z = " << z;
+    for (int k = 1; k < 4; ++k)  // growing from the wall
+      EXPECT_GE((layer.points[(k + 1) * n + v] - layer.points[k * n + v]).norm(),
+                (layer.points[k * n + v] - layer.points[(k - 1) * n + v]).norm() * (1 - 1e-6));
+    changed += first < 0.075 * (1 - 1e-6);
+  }
+  EXPECT_EQ(layer.capped_vertices, changed);
+  EXPECT_GT(changed, n / 3);
+  // Below what growth 2 gives (0.3 / 15 = 0.02 mm), the thickness is cut: 0.01 mm x 15 = 0.15 mm.
+  o.first_height = [](const Vec3& x) { return x.z() < 8.0 ? 0.01 : 0.0; };
+  const BoundaryLayer cut = build_boundary_layer(p.wall, radius, p.ends, o);
+  for (int v = 0; v < n; ++v)
+    if (p.wall.points[v].z() < 7.0) {
+      EXPECT_NEAR((cut.points[n + v] - cut.points[v]).norm(), 0.01, 0.01 * 0.01);
+      EXPECT_NEAR(cut.thickness[v], 0.15, 0.15 * 0.01);
+    }
+  // A height asked above the first layer's changes nothing.
+  o.first_height = [](const Vec3&) { return 1.0; };
+  EXPECT_EQ(build_boundary_layer(p.wall, radius, p.ends, o).capped_vertices, 0);
+}
+
 TEST(BoundaryLayer, GrowthMakesLayersThickerInward) {
   const Pipe p = pipe();
   const std::vector<double> radius(p.wall.points.size(), 3.0);
