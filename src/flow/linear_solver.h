@@ -155,6 +155,22 @@ inline std::string saddle_point_options() {
 // each step: a third fewer iterations on the anastomosis's curvature mesh (16.6 and 16.1 against
 // 24.9, 15 steps) at 6.9 and 4.9 times the solve time (bench/time_steps.sh); AIR's Stokes start
 // did not converge on the nozzle.
+// Tried after (bench/time_steps.sh's two cases, one process, the same binary; iterations a settled step and
+// solve seconds, the default 18.2 / 0.23-0.29 on the anastomosis and 45.0 / 1.36-1.42 on the nozzle):
+// - a Cahouet-Chabard Schur approximation, S^-1 ~ (L / m)^-1 + kappa M_p^-1 (the weighted Laplacian of the
+//   mass term alone plus a lumped pressure mass weighted by nu + tau_C + tau_M |u|^2 / 3, added through a
+//   composite preconditioner; the Fourier symbol of a gradient mode's Schur complement under grad-div):
+//   25.5 and 91.7; the additive mass term beside the default's Laplacian 22.7 and 75.7; none better at
+//   any weight tried (0.3, 1, 3): the default's Laplacian weighted by the whole momentum diagonal is the best;
+// - PETSc's selfp (B diag(A)^-1 B^T, two rings): 27.2 and 97.9;
+// - SOR on the velocity block: 12.0 and 28.9 iterations at 1.6-1.8 times the solve time; its forward
+//   sweep only 14.6 and 31.1 (1.3-1.5 times); with the factorization's upper part 13.9 and 29.4 (1.1-1.4);
+// - the factorization's upper or lower part with point-block Jacobi: 21.2 / 20.7 and 40.7 / 40.7 (the
+//   nozzle's solve 0.81-0.90 of the default's, the anastomosis's 1.2-1.3: not taken);
+// - the velocity block's preconditioner rebuilt at every step while the Schur complement's AMG is kept:
+//   17.2 and 43.3, no faster; everything rebuilt at every step: 15.3 and 39.9 (what reuse costs: 3-5
+//   iterations a step, cheaper than AMG's set-up);
+// - FGMRES restarted after 30 or 60: 18.1 / 17.7 and 45.7 / 43.7: the restart does not limit it.
 inline std::string time_step_options() {
   return "-ksp_type fgmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 10 "
          "-pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full "
