@@ -652,6 +652,8 @@ TEST(Cli, AdaptRefusesBadInputInOneLine) {
   refused({tmp.path("pipe.stl"), tmp.path("case.toml"), "--target-triangles", "2000", "--cycles", "0"},
           "--cycles 0: at least 1");
   refused({tmp.path("pipe.stl"), tmp.path("case.toml"), "--target-triangles", "2000", "--start", "flow"}, "--start");
+  refused({tmp.path("pipe.stl"), tmp.path("case.toml"), "--target-triangles", "2000", "--layer-y-plus", "-1"},
+          "--layer-y-plus -1: give a y+ >= 0");
   refused({tmp.path("pipe.stl"), tmp.path("none.toml"), "--target-triangles", "2000"}, "none.toml");
   refused({tmp.path("ball.stl"), tmp.path("case.toml"), "--target-triangles", "2000"}, "no open or flat-capped end");
 }
