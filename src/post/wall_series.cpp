@@ -53,7 +53,7 @@ WallSeries read_wall_series(const std::string& directory, const std::string& col
         try {
           const flow::FlowCase c = flow::read_case(j.at("case").get<std::string>());
           series.density = c.density, series.viscosity = c.viscosity;
-        } catch (const InputError&) {  // the case no longer reads (its mesh moved): the fluid unknown
+        } catch (const Error&) {  // the case no longer reads (moved, or no longer valid): the fluid unknown
         }
       }
     } catch (const nlohmann::json::exception& e) {
