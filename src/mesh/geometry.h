@@ -5,6 +5,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 namespace vesselmesh::mesh {
 
@@ -29,6 +30,12 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
 // The barycentric coordinates of p's projection onto the plane of triangle (a, b, c), clamped to
 // the triangle (non-negative, summing to one); a third each for a degenerate triangle.
 std::array<double, 3> barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+// A field given per point of `m`, linear over triangle t, at p (its projection, clamped as above).
+inline double linear_on_triangle(const TriMesh& m, int t, const Vec3& p, const std::vector<double>& values) {
+  const Triangle& f = m.triangles[t];
+  const std::array<double, 3> w = barycentric(p, m.points[f[0]], m.points[f[1]], m.points[f[2]]);
+  return w[0] * values[f[0]] + w[1] * values[f[1]] + w[2] * values[f[2]];
+}
 
 // Interior angles at corners 0, 1, 2, in radians (0 for a corner with a zero-length edge).
 std::array<double, 3> triangle_angles(const TriMesh& m, int t);

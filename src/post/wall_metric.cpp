@@ -9,7 +9,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <memory>
 
@@ -97,10 +96,7 @@ std::function<double(const Vec3&)> height_function(WallHeights heights) {
   const auto field = std::make_shared<const Field>(std::move(heights));
   return [field](const Vec3& x) {
     const mesh::SurfaceLocator::Hit hit = field->locator.closest(x);
-    const Triangle& t = field->h.wall.triangles[static_cast<size_t>(hit.triangle)];
-    const std::vector<Vec3>& corner = field->h.wall.points;
-    const std::array<double, 3> w = mesh::barycentric(hit.point, corner[t[0]], corner[t[1]], corner[t[2]]);
-    return w[0] * field->h.heights[t[0]] + w[1] * field->h.heights[t[1]] + w[2] * field->h.heights[t[2]];
+    return mesh::linear_on_triangle(field->h.wall, hit.triangle, hit.point, field->h.heights);
   };
 }
 

@@ -40,6 +40,16 @@ post::WallField last_wall(const std::string& flow_dir) {
 
 }  // namespace
 
+void size_volume_to_flow(volume::VolumeOptions& vo, const std::string& flow_dir,
+                         const sizing::ErrorMetricOptions& error,
+                         double y_plus, const flow::FlowCase& flow_case, const Reporter& reporter) {
+  vo.interior.flow =
+      post::size_function(post::fluid_error_sizes(flow_dir, {}, vo.interior.gradation, error, reporter));
+  if (y_plus > 0.0 && vo.layer.layers > 0)
+    vo.layer.first_height = post::height_function(
+        post::first_layer_heights(flow_dir, {}, y_plus, {flow_case.density, flow_case.viscosity}, reporter));
+}
+
 void check_adapt_options(const AdaptOptions& o) {
   if (!(o.target_triangles > 0.0 && std::isfinite(o.target_triangles)))
     throw OptionError(fmt::format("--target-triangles {}: give the count every cycle's surface is made at (> 0)",
@@ -93,13 +103,7 @@ std::vector<AdaptCycle> adapt_to_flow(const TriMesh& input, const flow::FlowCase
     step = Clock::now();
     volume::VolumeOptions vo = options.volume;
     vo.end_at = end_at;
-    if (k > 0) {
-      vo.interior.flow = post::size_function(
-          post::fluid_error_sizes(before, {}, vo.interior.gradation, options.error, reporter));
-      if (options.y_plus > 0.0 && vo.layer.layers > 0)
-        vo.layer.first_height = post::height_function(post::first_layer_heights(
-            before, {}, options.y_plus, {flow_case.density, flow_case.viscosity}, reporter));
-    }
+    if (k > 0) size_volume_to_flow(vo, before, options.error, options.y_plus, flow_case, reporter);
     const centerline::DistanceMap wall_distance =
         centerline::distance_map(remeshed.mesh, centerline::extract(remeshed.mesh, {}, reporter));
     const std::vector<analysis::OpenEnd> ends = analysis::open_ends(remeshed.mesh);

@@ -46,6 +46,14 @@ struct AdaptCycle {
   double wall_mean_wss = 0.0;  // Pa, area-weighted
 };
 
+// The flow kind's volume options from a flow on a first mesh (`flow_dir`; the study's "flow" kind and each
+// cycle here): the interior sized by the velocity's interpolation error (post/fluid_metric.h, graded by
+// vo.interior.gradation) and, with y_plus > 0 and layers, the first layer's height by the wall shear
+// (post::first_layer_heights, the fluid `flow_case`'s).
+void size_volume_to_flow(volume::VolumeOptions& vo, const std::string& flow_dir,
+                         const sizing::ErrorMetricOptions& error,
+                         double y_plus, const flow::FlowCase& flow_case, const Reporter& reporter);
+
 // OptionError for a target of triangles <= 0, cycles < 1, a flow start kind, a negative point target or y+.
 void check_adapt_options(const AdaptOptions& options);
 

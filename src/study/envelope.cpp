@@ -44,9 +44,7 @@ std::vector<double> field_on(const TriMesh& input, const TriMesh& mesh, const st
   std::vector<double> there(input.points.size());
   tbb::parallel_for(size_t{0}, input.points.size(), [&](size_t v) {
     const mesh::SurfaceLocator::Hit hit = on_mesh.closest(input.points[v]);
-    const Triangle& f = mesh.triangles[hit.triangle];
-    const auto l = vesselmesh::mesh::barycentric(hit.point, mesh.points[f[0]], mesh.points[f[1]], mesh.points[f[2]]);
-    there[v] = l[0] * values[f[0]] + l[1] * values[f[1]] + l[2] * values[f[2]];
+    there[v] = vesselmesh::mesh::linear_on_triangle(mesh, hit.triangle, hit.point, values);
   });
   return there;
 }

@@ -23,6 +23,7 @@
 #include "remesh/adapt.h"
 #include "remesh/extend.h"
 #include "sizing/metric.h"
+#include "study/adaptation.h"
 #include "study/envelope.h"
 #include "study/study_report.h"
 #include "study/wall_difference.h"
@@ -391,13 +392,7 @@ volume::VolumeResult make_volume(const TriMesh& wall, const StudyConfig& config,
               .first_height = std::move(first_height)};
   vo.algorithm = volume::parse_fill_algorithm(config.algorithm);
   vo.interior = interior;
-  if (!flow_dir.empty()) {  // the flow kind: its interior by the velocity's error, its layer by the wall shear
-    vo.interior.flow =
-        post::size_function(post::fluid_error_sizes(flow_dir, {}, interior.gradation, {}, reporter));
-    if (config.flow_y_plus > 0.0)
-      vo.layer.first_height = post::height_function(post::first_layer_heights(
-          flow_dir, {}, config.flow_y_plus, {base_case.density, base_case.viscosity}, reporter));
-  }
+  if (!flow_dir.empty()) size_volume_to_flow(vo, flow_dir, {}, config.flow_y_plus, base_case, reporter);
   vo.inlet = config.inlet;
   vo.end_names = config.end_names;
   vo.end_at = end_at;

@@ -112,7 +112,11 @@ void first_heights(const TriMesh& wall, const BoundaryLayerOptions& options, dou
   for (int v = 0; v < n; ++v)
     if (const double h = options.first_height(wall.points[v]); h > 0.0 && std::isfinite(h)) asked[v] = h;
   sizing::grade_sizes(wall, asked, slope_growth);
-  const double least_share = layer_fractions(options.layers, kMostFirstGrowth)[1];
+  // The first layer's share of the thickness at growth g: (g - 1) / (g^N - 1), 1 / N at g = 1.
+  const auto first_share = [N = options.layers](double g) {
+    return g == 1.0 ? 1.0 / N : (g - 1.0) / (std::pow(g, N) - 1.0);
+  };
+  const double least_share = first_share(kMostFirstGrowth);
   for (int v = 0; v < n; ++v) {
     const double share = asked[v] / out.target[v];
     if (!(share < fraction[v * levels + 1] * (1.0 - 1e-9))) continue;
@@ -122,7 +126,7 @@ void first_heights(const TriMesh& wall, const BoundaryLayerOptions& options, dou
       double low = std::max(options.growth, 1.0), high = kMostFirstGrowth;
       for (int i = 0; i < 60; ++i) {
         const double mid = 0.5 * (low + high);
-        (layer_fractions(options.layers, mid)[1] > share ? low : high) = mid;
+        (first_share(mid) > share ? low : high) = mid;
       }
       g = 0.5 * (low + high);
     } else {

@@ -59,17 +59,12 @@ double InteriorSize::at(const Vec3& x) const {
   const mesh::SurfaceLocator::Hit hit = locator_.closest(x);
   const Triangle& f = wall_.triangles[hit.triangle];
   const auto w = mesh::barycentric(hit.point, wall_.points[f[0]], wall_.points[f[1]], wall_.points[f[2]]);
-  double h = 0.0, r = 0.0, t = 0.0;
+  double h = 0.0, r = 0.0, t = 0.0;  // (mesh::barycentric's weights are clamped to the triangle: sum 1)
   for (int k = 0; k < 3; ++k) {
-    const double wk = std::clamp(w[k], 0.0, 1.0);
-    h += wk * size_[f[k]];
-    if (!radius_.empty()) r += wk * radius_[f[k]];
-    if (!layer_.empty()) t += wk * layer_[f[k]];
+    h += w[k] * size_[f[k]];
+    if (!radius_.empty()) r += w[k] * radius_[f[k]];
+    if (!layer_.empty()) t += w[k] * layer_[f[k]];
   }
-  const double sum = std::clamp(w[0], 0.0, 1.0) + std::clamp(w[1], 0.0, 1.0) + std::clamp(w[2], 0.0, 1.0);
-  h /= sum;
-  r /= sum;
-  t /= sum;
   double size = h + slope_ * std::max(0.0, hit.distance - t);
   const double flow = options_.flow ? options_.flow(x) : 0.0;
   if ((!(flow > 0.0) || options_.flow_keeps_core) && !radius_.empty())
