@@ -137,6 +137,102 @@ void first_heights(const TriMesh& wall, const BoundaryLayerOptions& options, dou
   }
 }
 
+// The prism over wall triangle f between levels k and k + 1 (n wall points a level).
+Prism prism_between(int n, const Triangle& f, int k) {
+  return {k * n + f[0], k * n + f[1], k * n + f[2], (k + 1) * n + f[0], (k + 1) * n + f[1], (k + 1) * n + f[2]};
+}
+
+// Per prism, wall triangle by wall triangle and level by level (the order of BoundaryLayer::prisms): the
+// least dihedral angle (degrees) of its tetrahedra, the levels' points as `points` has them.
+std::vector<double> prism_angles(const TriMesh& wall, const std::vector<Vec3>& points, int levels) {
+  const int n = wall.num_points(), layers = levels - 1;
+  std::vector<double> angle(wall.triangles.size() * layers);
+  for (size_t t = 0; t < wall.triangles.size(); ++t)
+    for (int k = 0; k < layers; ++k) {
+      double least = 180.0;
+      for (const Tet& c : mesh::split_prism(prism_between(n, wall.triangles[t], k)))
+        least = std::min(least, mesh::least_dihedral_angle(points[c[0]], points[c[1]], points[c[2]], points[c[3]]) *
+                                    180.0 / std::numbers::pi);
+      angle[t * layers + k] = least;
+    }
+  return angle;
+}
+
+// The strips at the ends: side quads (u_k, u_k+1, v_k+1, v_k) of each loop edge u -> v, cut along the
+// diagonal through their least index, as the prisms beside them are; and the inner loops.
+void build_strips(const std::vector<WallEnd>& ends, int n, int levels, BoundaryLayer& out) {
+  out.end_strips.assign(ends.size(), {});
+  out.inner_loops.assign(ends.size(), {});
+  for (size_t e = 0; e < ends.size(); ++e) {
+    const std::vector<int>& loop = ends[e].loop;
+    for (size_t i = 0; i < loop.size(); ++i) {
+      const int u = loop[i], v = loop[(i + 1) % loop.size()];
+      for (int k = 0; k + 1 < levels; ++k) {
+        const int u0 = k * n + u, u1 = (k + 1) * n + u, v0 = k * n + v, v1 = (k + 1) * n + v;
+        if (std::min(u0, v1) < std::min(u1, v0)) {
+          out.end_strips[e].push_back({u0, u1, v1});
+          out.end_strips[e].push_back({u0, v1, v0});
+        } else {
+          out.end_strips[e].push_back({u0, u1, v0});
+          out.end_strips[e].push_back({u1, v1, v0});
+        }
+      }
+      out.inner_loops[e].push_back((levels - 1) * n + u);
+    }
+  }
+}
+
+// A column nearly tangent to one of its triangles (direction d at wall point v, `plane` its end's plane
+// normal or zero) turned toward that triangle's normal, in steps, until every
+// triangle around sees it at 0.3 or more.
+void turn_toward_visible(const TriMesh& wall, const mesh::VertexTriangles& around, int v, const Vec3& plane, Vec3& d) {
+  for (int step = 0; step < 20; ++step) {
+    double least = 1.0;
+    Vec3 worst = Vec3::Zero();
+    for (int t : around.of(v)) {
+      const Triangle& f = wall.triangles[t];
+      const Vec3 inward =
+          -(wall.points[f[1]] - wall.points[f[0]]).cross(wall.points[f[2]] - wall.points[f[0]]).normalized();
+      if (inward.allFinite() && d.dot(inward) < least) least = d.dot(inward), worst = inward;
+    }
+    if (least >= 0.3) return;
+    Vec3 turned = d + 0.5 * worst;
+    if (plane.squaredNorm() > 0) turned -= turned.dot(plane) * plane;
+    if (!(turned.norm() > 1e-9)) return;
+    d = turned.normalized();
+  }
+}
+
+// The built layer's prisms, inner surface and reports (out.thickness set; `angle` per prism, in
+// out.prisms' order: measure_angles in build_boundary_layer).
+void record_layer(const TriMesh& wall, const BoundaryLayerOptions& options, const std::vector<double>& angle,
+                  BoundaryLayer& out) {
+  const int n = wall.num_points(), levels = out.levels, layers = levels - 1;
+  for (const Triangle& f : wall.triangles) {
+    for (int k = 0; k + 1 < levels; ++k) {
+      out.prisms.push_back(prism_between(n, f, k));
+      out.prism_layer.push_back(k + 1);
+      out.prism_column.push_back(static_cast<int>(&f - wall.triangles.data()));
+    }
+    out.inner.push_back({(levels - 1) * n + f[0], (levels - 1) * n + f[1], (levels - 1) * n + f[2]});
+  }
+  for (int v = 0; v < n; ++v) {
+    const double kept = out.thickness[v] / out.target[v];
+    if (kept < 0.999) ++out.shrunk_vertices;
+    if (kept < out.least_fraction) out.least_fraction = kept, out.least_at = wall.points[v];
+    if (kept > 1.001) ++out.thickened_vertices;
+    if (kept > out.most_fraction) out.most_fraction = kept, out.most_at = wall.points[v];
+  }
+  out.column_angle.assign(wall.triangles.size(), 180.0);
+  for (size_t p = 0; p < angle.size(); ++p) {
+    out.column_angle[p / layers] = std::min(out.column_angle[p / layers], angle[p]);
+    if (angle[p] < out.least_angle)
+      out.least_angle = angle[p], out.least_angle_at = wall.points[wall.triangles[p / layers][0]];
+    if (options.min_angle_deg > 0.0 && angle[p] < options.min_angle_deg) ++out.under_angle_prisms;
+  }
+}
+
+
 }  // namespace
 
 int split_long_edges(TriMesh& wall, std::vector<double>& radius, const std::vector<int>& triangles) {
@@ -231,73 +327,18 @@ BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double
     return start;
   };
   out.points.resize(static_cast<size_t>(levels) * n);
-  // The prism over wall triangle f between levels k and k + 1.
-  auto level_prism = [n](const Triangle& f, int k) -> Prism {
-    return {k * n + f[0], k * n + f[1], k * n + f[2], (k + 1) * n + f[0], (k + 1) * n + f[1], (k + 1) * n + f[2]};
-  };
+  auto level_prism = [n](const Triangle& f, int k) { return prism_between(n, f, k); };
   auto place = [&](const std::vector<double>& thickness) {
     for (int k = 0; k < levels; ++k)
       for (int v = 0; v < n; ++v)
         out.points[k * n + v] = wall.points[v] + fraction[v * levels + k] * thickness[v] * out.direction[v];
   };
 
-  // The strips at the ends: side quads (u_k, u_k+1, v_k+1, v_k) of each loop edge u -> v, cut
-  // along the diagonal through their least index, as the prisms beside them are.
-  auto build_strips = [&] {
-    out.end_strips.assign(ends.size(), {});
-    out.inner_loops.assign(ends.size(), {});
-    for (size_t e = 0; e < ends.size(); ++e) {
-      const std::vector<int>& loop = ends[e].loop;
-      for (size_t i = 0; i < loop.size(); ++i) {
-        const int u = loop[i], v = loop[(i + 1) % loop.size()];
-        for (int k = 0; k + 1 < levels; ++k) {
-          const int u0 = k * n + u, u1 = (k + 1) * n + u, v0 = k * n + v, v1 = (k + 1) * n + v;
-          if (std::min(u0, v1) < std::min(u1, v0)) {
-            out.end_strips[e].push_back({u0, u1, v1});
-            out.end_strips[e].push_back({u0, v1, v0});
-          } else {
-            out.end_strips[e].push_back({u0, u1, v0});
-            out.end_strips[e].push_back({u1, v1, v0});
-          }
-        }
-        out.inner_loops[e].push_back((levels - 1) * n + u);
-      }
-    }
-  };
-  build_strips();
+  build_strips(ends, n, levels, out);
 
   const mesh::VertexTriangles around = mesh::build_vertex_triangles(wall);
-  auto turn_toward_visible = [&](int v) {
-    Vec3& d = out.direction[v];
-    for (int step = 0; step < 20; ++step) {
-      double least = 1.0;
-      Vec3 worst = Vec3::Zero();
-      for (int t : around.of(v)) {
-        const Triangle& f = wall.triangles[t];
-        const Vec3 inward = -(wall.points[f[1]] - wall.points[f[0]]).cross(wall.points[f[2]] - wall.points[f[0]]).normalized();
-        if (inward.allFinite() && d.dot(inward) < least) least = d.dot(inward), worst = inward;
-      }
-      if (least >= 0.3) return;
-      Vec3 turned = d + 0.5 * worst;
-      if (plane[v].squaredNorm() > 0) turned -= turned.dot(plane[v]) * plane[v];
-      if (!(turned.norm() > 1e-9)) return;
-      d = turned.normalized();
-    }
-  };
-  // Per prism, wall triangle by wall triangle and level by level (the order of out.prisms): the
-  // least dihedral angle (degrees) of its tetrahedra, as the layer stands.
   const int layers = levels - 1;
-  std::vector<double> angle(wall.triangles.size() * layers);
-  auto measure_angles = [&] {
-    for (size_t t = 0; t < wall.triangles.size(); ++t)
-      for (int k = 0; k < layers; ++k) {
-        double least = 180.0;
-        for (const Tet& c : mesh::split_prism(level_prism(wall.triangles[t], k)))
-          least = std::min(least, mesh::least_dihedral_angle(out.points[c[0]], out.points[c[1]], out.points[c[2]],
-                                                             out.points[c[3]]) * 180.0 / std::numbers::pi);
-        angle[t * layers + k] = least;
-      }
-  };
+  std::vector<double> angle;  // per prism (prism_angles)
   std::vector<char> bad(n, 0);
   constexpr int kMaxRounds = 60, kAnglePasses = 4;
   std::vector<double> limit;
@@ -355,7 +396,7 @@ BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double
       // triangle's normal first (the direction every triangle around sees best).
       for (int v = 0; v < n; ++v) {
         if (!bad[v]) continue;
-        turn_toward_visible(v);
+        turn_toward_visible(wall, around, v, plane[v], out.direction[v]);
         limit[v] *= 0.7;
         if (limit[v] < options.min_thickness_fraction * out.target[v] || round == kMaxRounds) {
           throw InputError(fmt::format(
@@ -369,7 +410,7 @@ BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double
       reporter.info(fmt::format("boundary layer: round {}: {} folding places, {} crossing pairs; shrinking there",
                                 round + 1, local_failures, crossings));
     }
-    measure_angles();
+    angle = prism_angles(wall, out.points, levels);
     // Prisms still under the angle where nothing held their columns down (no shrink, no cap at
     // half the radius): the floor's estimate fell short (inner levels widen where the wall is
     // concave; leaning columns). Raise those floors by what the angle missed and build again.
@@ -392,29 +433,7 @@ BoundaryLayer build_boundary_layer(const TriMesh& wall, const std::vector<double
                               options.min_angle_deg));
   }
   out.thickness = limit;
-
-  for (const Triangle& f : wall.triangles) {
-    for (int k = 0; k + 1 < levels; ++k) {
-      out.prisms.push_back(level_prism(f, k));
-      out.prism_layer.push_back(k + 1);
-      out.prism_column.push_back(static_cast<int>(&f - wall.triangles.data()));
-    }
-    out.inner.push_back({(levels - 1) * n + f[0], (levels - 1) * n + f[1], (levels - 1) * n + f[2]});
-  }
-  for (int v = 0; v < n; ++v) {
-    const double kept = out.thickness[v] / out.target[v];
-    if (kept < 0.999) ++out.shrunk_vertices;
-    if (kept < out.least_fraction) out.least_fraction = kept, out.least_at = wall.points[v];
-    if (kept > 1.001) ++out.thickened_vertices;
-    if (kept > out.most_fraction) out.most_fraction = kept, out.most_at = wall.points[v];
-  }
-  out.column_angle.assign(wall.triangles.size(), 180.0);
-  for (size_t p = 0; p < angle.size(); ++p) {
-    out.column_angle[p / layers] = std::min(out.column_angle[p / layers], angle[p]);
-    if (angle[p] < out.least_angle)
-      out.least_angle = angle[p], out.least_angle_at = wall.points[wall.triangles[p / layers][0]];
-    if (options.min_angle_deg > 0.0 && angle[p] < options.min_angle_deg) ++out.under_angle_prisms;
-  }
+  record_layer(wall, options, angle, out);
   return out;
 }
 
