@@ -171,6 +171,17 @@ inline std::string saddle_point_options() {
 //   17.2 and 43.3, no faster; everything rebuilt at every step: 15.3 and 39.9 (what reuse costs: 3-5
 //   iterations a step, cheaper than AMG's set-up);
 // - FGMRES restarted after 30 or 60: 18.1 / 17.7 and 45.7 / 43.7: the restart does not limit it.
+// On the envelope levels the iterations grow with the mesh (the reduced anastomosis study with the flow kind, 2
+// processes, mean over 237 steps: 13.8 at 113k unknowns, 16.3 at 433k, 21.2 at 971k, 31.2 at 2.42 M; the
+// largest CFL number 21, 40, 44, 52), where the pipe's hold. Level 2 (971k) restarted from its checkpoint at
+// t = 1.21 s through the next systole (40 steps, one process): the default 25.6 a step (2.35 s of solve);
+// FGMRES restarted after 40: 24.9, no faster; the velocity block solved to 1e-5 (GMRES, SOR): 0.6 times
+// the default's iterations over the first 14 steps (both sides of the split limit it about equally there);
+// a least-squares commutator with the stabilization's block (S^-1 ~ P^-1 (C - A10 D^-1 A00 D^-1 A01) P^-1,
+// P the user's matrix by one AMG cycle, D = diag(A00) scaled to match P on a smooth vector; a shell
+// preconditioner, code not kept) on the anastomosis's curvature mesh: 182 iterations at the first step
+// against 51, the second not converged in 1000 (at D's scale 0.24, 0.5 and 1: the commutator unadjusted at
+// the no-slip walls, which hold the whole lumen, is known to fail there).
 inline std::string time_step_options() {
   return "-ksp_type fgmres -ksp_rtol 1e-6 -ksp_max_it 1000 -ksp_gmres_restart 10 "
          "-pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full "
