@@ -233,8 +233,9 @@ void expect_views_drawn(const std::string& html, int views) {
       EXPECT_GT(all, 0.03) << "view " << k << mode << ": no wall drawn";
       EXPECT_GT(scaled, 0.85 * all) << "view " << k << mode << ": colours not of the scale (" << scaled << " of "
                                     << all << " of the view)";
-      if (difference)  // the toggle turned the view from the |WSS| scale
+      if (difference) {  // the toggle turned the view from the |WSS| scale
         EXPECT_LT(share_of_pixels(d->screenshot, d->rects[k], wss_coloured), 0.5 * all) << "view " << k << mode;
+      }
       std::cout << "view " << k << mode << ": drawn " << all << " of the view, in the scale " << scaled << "\n";
     }
   }

@@ -55,7 +55,7 @@ class Remesher {
  public:
   Remesher(SurfaceModel& model, const RemeshOptions& options, std::vector<double> bound, bool stretched)
       : model_(model), m_(model), o_(options), bound_(std::move(bound)), stretched_(stretched),
-        tightened_(model.input().points.size(), 1.0), anisotropic_(anisotropic(model)) {}
+        anisotropic_(anisotropic(model)), tightened_(model.input().points.size(), 1.0) {}
 
   void run(const Reporter& reporter);
   DynamicMesh& mesh() { return m_; }

@@ -65,15 +65,15 @@ VolumeQuality measure_volume(const TetMesh& m, const std::vector<double>& radius
 
   // Every cell as tetrahedra (prisms by their split), with its layer (-1: unknown).
   const std::vector<Tet> all = mesh::all_tetrahedra(m);
-  std::vector<int> layer(all.size(), -1), column(all.size(), -1);
+  std::vector<int> layer(all.size(), -1), column_of(all.size(), -1);
   for (int t = 0; t < m.num_tets() && !m.tet_layer.empty(); ++t) layer[t] = m.tet_layer[t];
-  for (int t = 0; t < m.num_tets() && !m.tet_column.empty(); ++t) column[t] = m.tet_column[t];
+  for (int t = 0; t < m.num_tets() && !m.tet_column.empty(); ++t) column_of[t] = m.tet_column[t];
   for (int p = 0; p < m.num_prisms(); ++p) {
     bool inverted = false;
     for (int k = 0; k < 3; ++k) {
       const size_t i = m.tets.size() + 3 * p + k;
       layer[i] = m.prism_layer.empty() ? 1 : m.prism_layer[p];
-      if (!m.prism_column.empty()) column[i] = m.prism_column[p];
+      if (!m.prism_column.empty()) column_of[i] = m.prism_column[p];
       if (!(mesh::tet_volume6(m, all[i]) > 0)) inverted = true;
     }
     if (inverted) ++q.inverted;
@@ -93,8 +93,8 @@ VolumeQuality measure_volume(const TetMesh& m, const std::vector<double>& radius
       least = std::min(least, angles.back());
     }
     if (layer[i] > 0) min_layer = std::min(min_layer, least);
-    if (layer[i] > 0 && column[i] >= 0 && column[i] < static_cast<int>(m.boundary.size()))
-      min_layer_frame = std::min(min_layer_frame, layer_frame_angle(m, column[i], t));
+    if (layer[i] > 0 && column_of[i] >= 0 && column_of[i] < static_cast<int>(m.boundary.size()))
+      min_layer_frame = std::min(min_layer_frame, layer_frame_angle(m, column_of[i], t));
     if (layer[i] == 0) min_interior = std::min(min_interior, least);
     q.worst_scaled_jacobian = std::min(q.worst_scaled_jacobian, mesh::scaled_jacobian(a, b, c, d));
     q.worst_aspect_ratio = std::max(q.worst_aspect_ratio, aspect_ratio(a, b, c, d));
