@@ -283,13 +283,22 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
 
   const io::TomlView output = root["output"];
   if (output && !output.is_table()) r.fail("output", "expected a table [output]");
-  if (output) r.known_keys(*output.as_table(), "output", {"wss_method", "checkpoint_every", "fluid_every"});
+  if (output)
+    r.known_keys(*output.as_table(), "output", {"wss_method", "checkpoint_every", "fluid_every", "statistics_from"});
   c.checkpoint_every = r.integer(output["checkpoint_every"], "output.checkpoint_every", c.save_every, 0);
   c.fluid_every = r.integer(output["fluid_every"], "output.fluid_every", c.save_every, 0);
   if (c.fluid_every % c.save_every != 0)
     r.fail("output.fluid_every", fmt::format("{} is not a multiple of time.save_every ({}): the fluid is saved with "
                                              "the wall; give a multiple, or 0 for the last step only",
                                              c.fluid_every, c.save_every));
+  if (output["statistics_from"]) {
+    c.statistics_from = r.number(output["statistics_from"], "output.statistics_from", -1.0, false);
+    if (c.steady) r.fail("output.statistics_from", "a steady case has no time statistics: remove it, or run in time");
+    if (!(c.statistics_from >= 0.0 && c.statistics_from < c.end))
+      r.fail("output.statistics_from", fmt::format("{:g} s: give the time (s, from 0 to before time.end, {:g} s) from "
+                                                   "which to average the flow",
+                                                   c.statistics_from, c.end));
+  }
   c.wss_method = r.text(output["wss_method"], "output.wss_method", c.wss_method);
   try {
     post::parse_wss_method(c.wss_method);

@@ -36,7 +36,9 @@
 // only at the last step and when SIGTERM or SIGINT stops the run), fluid_every = N (steps between
 // saved fluid volumes, fluid_*.vtu, a multiple of save_every; default save_every; 0: the last step
 // only — the wall, wall_*.vtp, is saved every save_every steps whatever it is: a fine mesh's
-// volume files are what fills a disk).
+// volume files are what fills a disk), statistics_from = T (s; unsteady runs: the time mean of the
+// velocity and the pressure and the RMS of the velocity's fluctuation from T to the end, per point,
+// in statistics.vtu, flow/statistics.h; default none).
 // A positive flow enters the domain, a negative one leaves it.
 #pragma once
 
@@ -118,6 +120,7 @@ struct FlowCase {
   std::string wss_method = "quadratic";  // post::parse_wss_method
   int checkpoint_every = 10;             // [output]: steps (default save_every); 0: at the end, on a signal
   int fluid_every = 10;                  // [output]: steps between fluid volumes (default save_every); 0: the last
+  double statistics_from = -1.0;         // [output]: s, the time statistics' start; < 0: none
 };
 
 std::string to_string(BoundaryType type);

@@ -14,15 +14,17 @@ namespace vesselmesh::flow {
 namespace {
 
 constexpr char kMagic[] = "vesselmesh checkpoint\n";
-// 2: the rcr ends' capacitor pressures; 3: the indices' mesh points; 4: pieces; 5: the steps' lengths
-constexpr uint32_t kVersion = 5;
+// 2: the rcr ends' capacitor pressures; 3: the indices' mesh points; 4: pieces; 5: the steps' lengths;
+// 6: the time statistics (5 still read: a run its program's update stopped goes on, keeping none)
+constexpr uint32_t kVersion = 6;
+constexpr uint32_t kOldestRead = 5;
 
 constexpr char kPieceMagic[] = "vesselmesh checkpoint piece\n";
 
-// A checkpoint file (`magic`: the checkpoint's or a piece's) of this format, past its header; its
-// reads cut short, another file or another format are InputErrors naming it.
+// A checkpoint file (`magic`: the checkpoint's or a piece's) of a format this program reads, past its
+// header, and that format; its reads cut short, another file or another format are InputErrors naming it.
 template <size_t N>
-io::ByteReader open_checkpoint_file(const std::string& path, const char (&magic)[N]) {
+std::pair<io::ByteReader, uint32_t> open_checkpoint_file(const std::string& path, const char (&magic)[N]) {
   io::ByteReader r(io::read_file(path), [path](size_t at, size_t size) {
     throw InputError(fmt::format("{}: the checkpoint is cut short (at byte {} of {}): it was not written whole; "
                                  "run the case again without --restart",
@@ -33,10 +35,10 @@ io::ByteReader open_checkpoint_file(const std::string& path, const char (&magic)
   if (std::memcmp(read, magic, sizeof read) != 0)
     throw InputError(fmt::format("{}: not a vesselmesh checkpoint", path));
   const auto version = r.value<uint32_t>();
-  if (version != kVersion)
-    throw InputError(fmt::format("{}: a checkpoint of format {} (this program reads {}): run the case again", path,
-                                 version, kVersion));
-  return r;
+  if (version < kOldestRead || version > kVersion)
+    throw InputError(fmt::format("{}: a checkpoint of format {} (this program reads {} to {}): run the case again",
+                                 path, version, kOldestRead, kVersion));
+  return {std::move(r), version};
 }
 
 // FNV-1a over bytes.
@@ -100,11 +102,15 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   w.value(c.pieces);
   w.value(c.flow.time_step);
   w.value(c.flow.last_time_step);
+  w.value(c.statistics.start);
+  w.value(c.statistics.end);
+  w.value(c.statistics.weight);
+  w.value(c.statistics.steps);
   io::write_text(path, w.text());
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
-  io::ByteReader r = open_checkpoint_file(path, kMagic);
+  auto [r, version] = open_checkpoint_file(path, kMagic);
   Checkpoint c;
   c.fingerprint = r.value<uint64_t>();
   c.flow.time = r.value<double>();
@@ -135,6 +141,12 @@ Checkpoint read_checkpoint(const std::string& path) {
   c.pieces = r.value<int>();
   c.flow.time_step = r.value<double>();
   c.flow.last_time_step = r.value<double>();
+  if (version >= 6) {
+    c.statistics.start = r.value<double>();
+    c.statistics.end = r.value<double>();
+    c.statistics.weight = r.value<double>();
+    c.statistics.steps = r.value<int>();
+  }
   if (c.index_points.size() != s.last.size())
     throw InputError(fmt::format("{}: the checkpoint's indices do not fit their points: not one of ours", path));
   if (!r.done()) throw InputError(fmt::format("{}: the checkpoint has bytes past its end: not one of ours", path));
@@ -146,7 +158,7 @@ std::string checkpoint_piece_path(const std::string& path, int steps, int piece)
 }
 
 
-void write_checkpoint_piece(const std::string& path, const FlowState& own) {
+void write_checkpoint_piece(const std::string& path, const FlowState& own, const FlowStatistics::State& statistics) {
   io::ByteWriter w;
   w.bytes(kPieceMagic, sizeof kPieceMagic - 1);
   w.value(kVersion);
@@ -156,11 +168,18 @@ void write_checkpoint_piece(const std::string& path, const FlowState& own) {
   w.vector(own.velocity);
   w.vector(own.previous);
   w.vector(own.kinematic_pressure);
+  w.vector(statistics.mean_velocity);
+  w.vector(statistics.squares);
+  w.vector(statistics.mean_pressure);
   io::write_text(path, w.text());
 }
 
 FlowState read_checkpoint_pieces(const std::string& path, const Checkpoint& c, const std::vector<int>& wanted,
-                                 int mesh_points) {
+                                 int mesh_points, FlowStatistics::State* statistics) {
+  if (statistics) {
+    *statistics = c.statistics;
+    statistics->points.clear();
+  }
   FlowState flow;
   flow.time = c.flow.time;
   flow.steps = c.flow.steps;
@@ -173,7 +192,7 @@ FlowState read_checkpoint_pieces(const std::string& path, const Checkpoint& c, c
     if (!std::filesystem::exists(piece))
       throw InputError(fmt::format("{}: the checkpoint's piece {} is missing: run the case without --restart", path,
                                    piece));
-    io::ByteReader r = open_checkpoint_file(piece, kPieceMagic);
+    auto [r, version] = open_checkpoint_file(piece, kPieceMagic);
     const int steps = r.value<int>();
     r.value<double>();
     if (steps != c.flow.steps)
@@ -181,7 +200,17 @@ FlowState read_checkpoint_pieces(const std::string& path, const Checkpoint& c, c
     const std::vector<int> at = r.vector<int>();
     const std::vector<Vec3> velocity = r.vector<Vec3>(), previous = r.vector<Vec3>();
     const std::vector<double> pressure = r.vector<double>();
-    if (velocity.size() != at.size() || previous.size() != at.size() || pressure.size() != at.size() || !r.done())
+    std::vector<Vec3> mean, squares;
+    std::vector<double> mean_pressure;
+    if (version >= 6) {
+      mean = r.vector<Vec3>();
+      squares = r.vector<Vec3>();
+      mean_pressure = r.vector<double>();
+    }
+    const bool kept = c.statistics.steps > 0;  // the run kept statistics: every piece holds them
+    const size_t kept_size = kept ? at.size() : 0;
+    if (velocity.size() != at.size() || previous.size() != at.size() || pressure.size() != at.size() ||
+        mean.size() != kept_size || squares.size() != kept_size || mean_pressure.size() != kept_size || !r.done())
       throw InputError(fmt::format("{}: the piece's fields do not fit its points: not one of ours", piece));
     for (size_t i = 0; i < at.size(); ++i) {
       if (at[i] < 0 || at[i] >= mesh_points)
@@ -194,6 +223,12 @@ FlowState read_checkpoint_pieces(const std::string& path, const Checkpoint& c, c
       flow.velocity.push_back(velocity[i]);
       flow.previous.push_back(previous[i]);
       flow.kinematic_pressure.push_back(pressure[i]);
+      if (statistics && kept) {
+        statistics->points.push_back(at[i]);
+        statistics->mean_velocity.push_back(mean[i]);
+        statistics->squares.push_back(squares[i]);
+        statistics->mean_pressure.push_back(mean_pressure[i]);
+      }
     }
   }
   const auto missing = std::find(found.begin(), found.end(), 0);

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "flow/navier_stokes.h"
+#include "flow/statistics.h"
 #include "post/indices.h"
 
 #include <cstdint>
@@ -30,6 +31,9 @@ struct Checkpoint {
   // the mesh (sorted), whatever process computed it.
   post::WssIndexAccumulator::State indices;
   std::vector<int> index_points;
+  // The flow's time statistics ([output] statistics_from): their span, weight and steps here, their
+  // fields by point in the pieces.
+  FlowStatistics::State statistics;
 };
 
 // The run a checkpoint belongs to: its mesh's points, cells and boundary, and the time step.
@@ -40,13 +44,17 @@ Checkpoint read_checkpoint(const std::string& path);
 
 // Piece `piece` of the flow's fields of the checkpoint `path` at step `steps`.
 std::string checkpoint_piece_path(const std::string& path, int steps, int piece);
-// A process's own points' state (FlowState::points set), atomically.
-void write_checkpoint_piece(const std::string& path, const FlowState& own);
+// A process's own points' state (FlowState::points set) and their time statistics' fields (in
+// the same order; none when the run keeps none), atomically.
+void write_checkpoint_piece(const std::string& path, const FlowState& own,
+                            const FlowStatistics::State& statistics = {});
 // The checkpoint's flow at the mesh points `wanted` (sorted; a process's local points), from its
-// pieces, `points` set (read one piece at a time, each process keeping what it wants); InputError
-// when a piece is missing or of another step, holds a point outside the mesh of `mesh_points`, or
-// a wanted point is in none.
+// pieces, `points` set (read one piece at a time, each process keeping what it wants), and into
+// `statistics` (when given and the checkpoint has them) their time statistics at the same points in
+// the same order; InputError when a piece is missing or of another step, holds a point outside the
+// mesh of `mesh_points`, or a wanted point is in none.
 FlowState read_checkpoint_pieces(const std::string& path, const Checkpoint& checkpoint,
-                                 const std::vector<int>& wanted, int mesh_points);
+                                 const std::vector<int>& wanted, int mesh_points,
+                                 FlowStatistics::State* statistics = nullptr);
 
 }  // namespace vesselmesh::flow

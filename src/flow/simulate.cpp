@@ -2,6 +2,8 @@
 
 #include "flow/checkpoint.h"
 #include "flow/navier_stokes.h"
+#include "flow/result_pieces.h"
+#include "flow/statistics.h"
 #include "io/atomic_file.h"
 #include "io/msh.h"
 #include "io/process.h"
@@ -62,81 +64,6 @@ TetMesh read_mesh(const FlowCase& c) {
   throw InputError(fmt::format("{}: mesh \"{}\": a volume mesh is read from .msh (Gmsh) or .vtu (with cell data "
                                "`tag`), as `vesselmesh volume` writes them",
                                c.path, c.mesh));
-}
-
-// The wall whose shear stress this process computes and writes, and how its points lead back to
-// the mesh.
-struct WallPiece {
-  post::WallSurface surface;  // the wall the operator works on
-  std::optional<post::WallShearOperator> shear;
-  TriMesh mesh;                    // the triangles this process writes, in the mesh's unit (labels: tags)
-  std::vector<int> surface_point;  // per point of `mesh`, its point of `surface`
-  std::vector<int> mesh_point;     // per point of `mesh`, its number in the mesh read
-  // The wall points this process owns (each counted on one process) and those of them that took
-  // the face value.
-  int owned_points = 0, owned_fallbacks = 0;
-
-  // Per point of `mesh`, Pa; `velocity` per point of the volume the operator was made on.
-  std::vector<Vec3> stress(const std::vector<Vec3>& velocity, double viscosity) const {
-    const std::vector<Vec3> all = shear->apply(velocity, viscosity);
-    std::vector<Vec3> out(surface_point.size());
-    for (size_t i = 0; i < out.size(); ++i) out[i] = all[surface_point[i]];
-    return out;
-  }
-};
-
-// One process: the whole wall of the mesh read.
-WallPiece whole_wall(const TetMesh& mesh, const std::vector<int>& wall_tags, const FlowCase& fc) {
-  WallPiece w;
-  const std::vector<Tet> all = mesh::all_tetrahedra(mesh);
-  w.surface = post::extract_wall(mesh, all, wall_tags);
-  std::vector<Vec3> si(mesh.points.size());
-  for (size_t i = 0; i < si.size(); ++i) si[i] = mesh.points[i] * fc.length_scale;
-  w.shear.emplace(w.surface, all, si, post::parse_wss_method(fc.wss_method));
-  w.mesh = w.surface.mesh;
-  w.surface_point.resize(w.mesh.num_points());
-  for (int v = 0; v < w.mesh.num_points(); ++v) w.surface_point[v] = v;
-  w.mesh_point = w.surface.volume_point;
-  w.owned_points = w.mesh.num_points();
-  w.owned_fallbacks = w.shear->face_fallbacks();
-  return w;
-}
-
-// Under MPI: the process's part of the wall (MeshPart::wall), the operator on its cells within
-// the stencils' reach (its local points), and the triangles it writes.
-WallPiece distributed_wall(const MeshPart& part, const std::vector<int>& wall_tags, const FlowCase& fc) {
-  WallPiece w;
-  TetMesh band;
-  band.points = part.points;
-  band.boundary = part.wall.triangles;
-  band.boundary_tags = part.wall.tags;
-  w.surface = post::extract_wall(band, part.wall.cells, wall_tags);
-  std::vector<Vec3> si(part.points.size());
-  for (size_t i = 0; i < si.size(); ++i) si[i] = part.points[i] * fc.length_scale;
-  w.shear.emplace(w.surface, part.wall.cells, si, post::parse_wss_method(fc.wss_method));
-  // extract_wall keeps the triangles' order: the written ones, their points numbered anew.
-  std::vector<int> at(w.surface.mesh.num_points(), -1);
-  for (size_t f = 0; f < part.wall.triangles.size(); ++f) {
-    if (!part.wall.written[f]) continue;
-    Triangle tri = w.surface.mesh.triangles[f];
-    for (int& v : tri) {
-      if (at[v] < 0) {
-        at[v] = w.mesh.num_points();
-        w.mesh.points.push_back(w.surface.mesh.points[v]);
-        w.surface_point.push_back(v);
-        w.mesh_point.push_back(part.mesh_point[w.surface.volume_point[v]]);
-      }
-      v = at[v];
-    }
-    w.mesh.triangles.push_back(tri);
-    w.mesh.labels.push_back(part.wall.tags[f]);
-  }
-  for (int v = 0; v < w.surface.mesh.num_points(); ++v)
-    if (w.surface.volume_point[v] < part.owned) {
-      ++w.owned_points;
-      if (w.shear->by_face(v)) ++w.owned_fallbacks;
-    }
-  return w;
 }
 
 // The indices' running sums of every process (per point of its wall piece, `mesh_point` their
@@ -267,35 +194,6 @@ std::map<std::string, std::string> end_logs(const std::string& log, const std::v
 
 namespace {
 
-// Under MPI, the piece of the fluid a process writes: its cells whose least point (in the mesh's
-// numbering) it owns, and per point of the piece its local point.
-struct FluidPiece {
-  TetMesh mesh;
-  std::vector<int> local;
-};
-FluidPiece own_fluid_piece(const MeshPart& part) {
-  FluidPiece piece;
-  piece.mesh.tag_names = part.tag_names;
-  std::vector<int> at(part.points.size(), -1);
-  for (const Tet& t4 : part.tets) {
-    int least = t4[0];
-    for (int a : t4)
-      if (part.local_global[a] < part.local_global[least]) least = a;
-    if (least >= part.owned) continue;  // another process's
-    Tet cell = t4;
-    for (int& a : cell) {
-      if (at[a] < 0) {
-        at[a] = static_cast<int>(piece.local.size());
-        piece.local.push_back(a);
-        piece.mesh.points.push_back(part.points[a]);
-      }
-      a = at[a];
-    }
-    piece.mesh.tets.push_back(cell);
-  }
-  return piece;
-}
-
 // One run of simulate(), in the steps it takes (simulate() calls them in order): the mesh read and
 // distributed, the partition described, the logs opened, a checkpoint restored, then the steady
 // solve or the time steps, each saved, checkpointed and summarized. Under mpirun the first process
@@ -340,6 +238,8 @@ class Run {
                            const std::vector<Field>& fields,
                            const std::function<void(const std::string&)>& write_piece) const;
   void write_indices();
+  std::string write_fluid(const std::string& name, const std::vector<Field>& local) const;
+  void write_statistics();
   void save(double time, const std::vector<Vec3>* computed, bool with_fluid);
   void write_checkpoint_now();
   void finish(const char* status);
@@ -374,6 +274,7 @@ class Run {
   // the wall points this process writes.
   post::WssIndexAccumulator indices_;
   double window_start_ = 0.0;
+  FlowStatistics statistics_;  // [output] statistics_from: at this process's local points
   const std::string checkpoint_path_;  // the state to go on from, in the mesh's numbering
   int first_step_ = 0;
 };
@@ -562,6 +463,12 @@ void Run::write_summary() const {
                     {"start_s", summary_.indices_start},
                     {"end_s", summary_.indices_end},
                     {"units", {{"tawss", "Pa"}, {"osi", "1"}, {"rrt", "1/Pa"}, {"twssg", "Pa/s"}}}};
+  if (summary_.statistics_steps > 0)
+    j["statistics"] = {{"file", summary_.statistics_file},
+                       {"start_s", summary_.statistics_start},
+                       {"end_s", summary_.statistics_end},
+                       {"steps", summary_.statistics_steps},
+                       {"units", {{"mean_velocity", "m/s"}, {"rms_velocity", "m/s"}, {"mean_pressure", "Pa"}}}};
   j["steps"] = summary_.steps;
   j["saved"] = summary_.saved;
   j["linear_iterations"] = summary_.linear_iterations;
@@ -625,37 +532,53 @@ void Run::write_indices() {
       r.start, r.end, r.samples));
 }
 
+// A fluid file of fields given per local point (this process's part's numbering): on one process
+// NAME.vtu of every mesh point, under MPI this process's piece and NAME.pvtu.
+std::string Run::write_fluid(const std::string& name, const std::vector<Field>& local) const {
+  std::vector<Field> described;
+  for (const Field& f : local) described.push_back(Field{f.name, f.components, {}});
+  return write_result(name, io::VtkFormat::vtu, described, [&](const std::string& path) {
+    std::vector<int> pick = fluid_.local;  // per point written, its local point
+    if (!pieces_) {  // every mesh point, by its number
+      pick.assign(static_cast<size_t>(mesh_.num_points()), -1);
+      const std::vector<int>& at = ns_->local_points();
+      for (size_t k = 0; k < at.size(); ++k) pick[static_cast<size_t>(at[k])] = static_cast<int>(k);
+    }
+    std::vector<Field> picked;
+    for (const Field& f : local) {
+      const auto c = static_cast<size_t>(f.components);
+      Field& g = picked.emplace_back(Field{f.name, f.components, std::vector<double>(pick.size() * c, 0.0)});
+      for (size_t k = 0; k < pick.size(); ++k)
+        if (pick[k] >= 0) std::copy_n(f.values.begin() + static_cast<std::ptrdiff_t>(pick[k] * c), c, &g.values[k * c]);
+    }
+    io::write_vtu(path, pieces_ ? fluid_.mesh : mesh_, picked, /*boundary=*/false);
+  });
+}
+
+// statistics.vtu (.pvtu) at the run's end, when the case asks for it.
+void Run::write_statistics() {
+  if (fc_.statistics_from < 0.0) return;
+  if (statistics_.steps() == 0) {
+    reporter_.warning(fmt::format("no time step after output.statistics_from = {:g} s (the run ends at {:g} s): no "
+                                  "statistics written", fc_.statistics_from, ns_->time()));
+    return;
+  }
+  const FlowStatistics::State& s = statistics_.state();
+  summary_.statistics_file = write_fluid("statistics", statistics_.fields());
+  summary_.statistics_start = s.start;
+  summary_.statistics_end = s.end;
+  summary_.statistics_steps = s.steps;
+  reporter_.info(fmt::format("{}: mean_velocity, rms_velocity (m/s), mean_pressure (Pa) over t = {:g} to {:g} s, "
+                             "{} steps", summary_.statistics_file, s.start, s.end, s.steps));
+}
+
 // `computed`: this step's wall shear stress when the indices already needed it; `with_fluid`:
 // the fluid volume too ([output] fluid_every), not only the wall.
 void Run::save(double time, const std::vector<Vec3>* computed, bool with_fluid) {
   const std::string name = fmt::format("{:06d}", summary_.saved);
-  if (with_fluid) {
-    const std::vector<Field> fluid_fields{Field::vector("velocity", {}),
-                                          Field::scalar("pressure", {})};
-    const std::string fluid_file = write_result(
-        "fluid_" + name, io::VtkFormat::vtu, fluid_fields, [&](const std::string& path) {
-          if (!pieces_) {
-            // The volume's cells in the mesh's numbering, without the boundary faces (as the pieces
-            // under MPI): handed to VTK without copies.
-            io::write_vtu(path, mesh_,
-                          {Field::vector("velocity", ns_->gathered_velocity()),
-                           Field::scalar("pressure", ns_->gathered_pressure())},
-                          /*boundary=*/false);
-            return;
-          }
-          const std::vector<Vec3>& u = ns_->local_velocity();
-          const std::vector<double> p = ns_->local_pressure();
-          std::vector<Vec3> velocity(fluid_.local.size());
-          std::vector<double> pressure(fluid_.local.size());
-          for (size_t k = 0; k < fluid_.local.size(); ++k) {
-            velocity[k] = u[fluid_.local[k]];
-            pressure[k] = p[fluid_.local[k]];
-          }
-          io::write_vtu(path, fluid_.mesh,
-                        {Field::vector("velocity", velocity), Field::scalar("pressure", pressure)});
-        });
-    fluid_files_.emplace_back(time, fluid_file);
-  }
+  if (with_fluid)
+    fluid_files_.emplace_back(time, write_fluid("fluid_" + name, {Field::vector("velocity", ns_->local_velocity()),
+                                                                  Field::scalar("pressure", ns_->local_pressure())}));
   const std::vector<Vec3> tau = computed ? *computed : wall_stress();
   std::vector<double> magnitude(tau.size());
   for (size_t i = 0; i < tau.size(); ++i) magnitude[i] = tau[i].norm();
@@ -695,7 +618,10 @@ void Run::log_step(const StepReport& r) {
 // checkpoint and removes the pieces of the one before.
 void Run::write_checkpoint_now() {
   FlowState own = ns_->own_state();
-  write_checkpoint_piece(checkpoint_piece_path(checkpoint_path_, own.steps, rank_), own);
+  FlowStatistics::State kept = statistics_.state();  // its own points' (the first local ones)
+  for (auto* field : {&kept.mean_velocity, &kept.squares}) field->resize(std::min(field->size(), own.points.size()));
+  kept.mean_pressure.resize(std::min(kept.mean_pressure.size(), own.points.size()));
+  write_checkpoint_piece(checkpoint_piece_path(checkpoint_path_, own.steps, rank_), own, kept);
   // The indices, on the first once every piece is written.
   auto gathered = gather_indices(indices_.state(), wall_.mesh_point);
   if (!writer_) return;
@@ -714,6 +640,10 @@ void Run::write_checkpoint_now() {
   c.wall_files = wall_files_;
   c.indices = std::move(gathered.first);
   c.index_points = std::move(gathered.second);
+  c.statistics.start = kept.start;
+  c.statistics.end = kept.end;
+  c.statistics.weight = kept.weight;
+  c.statistics.steps = kept.steps;
   write_checkpoint(checkpoint_path_, c);
   // The pieces of the checkpoints before (CHECKPOINT.SSSSSS.K of another step SSSSSS).
   const std::string name = std::filesystem::path(checkpoint_path_).filename().string() + ".";
@@ -737,10 +667,18 @@ void Run::restore_checkpoint() {
     throw InputError(fmt::format(
         "{}: no checkpoint to restart from; run the case without --restart", checkpoint_path_));
   Checkpoint c = read_checkpoint(checkpoint_path_);
+  FlowStatistics::State statistics;
   if (c.pieces > 0) {  // each process keeps its own points' state as it reads the pieces
     std::vector<int> wanted = ns_->local_points();
     std::sort(wanted.begin(), wanted.end());
-    c.flow = read_checkpoint_pieces(checkpoint_path_, c, wanted, mesh_points_);
+    c.flow = read_checkpoint_pieces(checkpoint_path_, c, wanted, mesh_points_, &statistics);
+  }
+  if (fc_.statistics_from >= 0.0 && statistics.steps > 0) {
+    statistics_ = FlowStatistics(statistics_at(statistics, ns_->local_points(), checkpoint_path_));
+  } else if (fc_.statistics_from >= 0.0 && fc_.statistics_from < c.flow.time) {
+    reporter_.warning(fmt::format("{}: the run that wrote it kept no time statistics: they will cover t = {:g} s to "
+                                  "the end, not from output.statistics_from = {:g} s (for that, run the case again "
+                                  "without --restart)", checkpoint_path_, c.flow.time, fc_.statistics_from));
   }
   if (parallel::any_process(writer_ && c.fingerprint != fingerprint_))
     throw InputError(fmt::format("{}: the checkpoint is of another mesh or time step than {}'s; run the case without "
@@ -843,6 +781,8 @@ bool Run::run_time_steps() {
       tau = wall_stress();
       indices_.add(r.time, tau);
     }
+    if (fc_.statistics_from >= 0.0 && r.time - 0.5 * r.time_step >= fc_.statistics_from)
+      statistics_.add(r.time, r.time_step, ns_->local_velocity(), ns_->local_pressure());
     if (r.step % fc_.save_every == 0 || last)
       save(r.time, in_window ? &tau : nullptr,
            last || (fc_.fluid_every > 0 && r.step % fc_.fluid_every == 0));
@@ -880,6 +820,7 @@ SimulationSummary Run::go() {
     throw;
   }
   write_indices();
+  write_statistics();
   finish("completed");
   return summary_;
 }

@@ -63,6 +63,10 @@ struct SimulationSummary {
   std::vector<double> own_memory_mb;  // per process: peak_memory_mb less library_memory_mb
   double distribution_memory_mb = 0.0;  // the first process's peak once it had read, split and sent the mesh
   std::string indices_file;  // indices.vtp, or indices.pvtp under MPI
+  // The time statistics ([output] statistics_from): statistics.vtu (.pvtu), their span (s), their steps.
+  std::string statistics_file;
+  double statistics_start = 0.0, statistics_end = 0.0;
+  int statistics_steps = 0;
   double steady_residual = -1.0;  // a steady case's relative residual at its answer (StepReport::residual)
   // s: the steps' lengths, least and largest (this run's; equal to the case's dt but where it aims
   // at a CFL number, FlowCase::cfl_target), and the simulated time this run covered.

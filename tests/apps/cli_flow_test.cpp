@@ -135,7 +135,8 @@ TEST(Cli, SimulateStoppedBySigtermGoesOnWithRestart) {
   test::TemporaryFolder tmp;
   ExampleCase example(tmp, "pipe.msh", {}, "0.3");  // 60 steps of 5 ms
   example.replace("save_every = 10", "save_every = 20");
-  example.replace("petsc_options = \"\"", "petsc_options = \"-ksp_rtol 1e-10\"\n[output]\ncheckpoint_every = 2");
+  example.replace("petsc_options = \"\"",
+                  "petsc_options = \"-ksp_rtol 1e-10\"\n[output]\ncheckpoint_every = 2\nstatistics_from = 0.1");
   test::write_bytes(tmp.path("case.toml"), example.text);
   // Started in the background, killed once its first checkpoint is there.
   const std::string command = "sh -c '" + std::string(VESSELMESH_PROGRAM) + " simulate " + tmp.path("case.toml") +
@@ -158,14 +159,20 @@ TEST(Cli, SimulateStoppedBySigtermGoesOnWithRestart) {
       << restarted.err;
   EXPECT_EQ(Json::parse(restarted.out)["steps"], 60);
   ASSERT_EQ(run({"simulate", tmp.path("case.toml"), "-o", tmp.path("whole"), "-q"}).code, 0);
-  const auto velocity = [&](const std::string& folder) {
+  const auto field = [&](const std::string& folder, const std::string& file, const std::string& name) {
     std::vector<Field> fields;
-    io::read_vtu_volume(tmp.path(folder + "/fluid_000002.vtu"), &fields);
+    io::read_vtu_volume(tmp.path(folder + "/" + file), &fields);
     for (const Field& f : fields)
-      if (f.name == "velocity") return f.values;
+      if (f.name == name) return f.values;
     return std::vector<double>{};
   };
-  EXPECT_LT(relative_difference(velocity("whole"), velocity("run")), 1e-7);
+  EXPECT_LT(relative_difference(field("whole", "fluid_000002.vtu", "velocity"),
+                                field("run", "fluid_000002.vtu", "velocity")),
+            1e-7);
+  // The time statistics from 0.1 s (the run stopped before they began): the uninterrupted run's.
+  for (const char* name : {"mean_velocity", "rms_velocity", "mean_pressure"})
+    EXPECT_LT(relative_difference(field("whole", "statistics.vtu", name), field("run", "statistics.vtu", name)), 1e-7)
+        << name;
   // Nothing to restart from: a one-line error, exit 2.
   const RunResult none = run({"simulate", tmp.path("case.toml"), "-o", tmp.path("elsewhere"), "--restart"});
   EXPECT_EQ(none.code, 2);
@@ -176,11 +183,72 @@ TEST(Cli, SimulateStoppedBySigtermGoesOnWithRestart) {
       run({"simulate", tmp.path("case.toml"), "-o", tmp.path("run"), "--restart", "--end", "0.35", "--json"});
   ASSERT_EQ(longer.code, 0) << longer.err;
   EXPECT_EQ(Json::parse(longer.out)["steps"], 70);
+  // Its statistics go on from the checkpoint's 40 steps, as a run to 0.35 s made at once has them.
+  const Json statistics = Json::parse(read_text(tmp.path("run/summary.json")))["statistics"];
+  EXPECT_EQ(statistics["steps"], 50);
+  EXPECT_NEAR(statistics["start_s"].get<double>(), 0.1, 1e-12);
+  EXPECT_NEAR(statistics["end_s"].get<double>(), 0.35, 1e-12);
+  EXPECT_EQ(statistics["units"]["rms_velocity"], "m/s");
+  ASSERT_EQ(run({"simulate", tmp.path("case.toml"), "-o", tmp.path("whole35"), "--end", "0.35", "-q"}).code, 0);
+  for (const char* name : {"mean_velocity", "rms_velocity", "mean_pressure"})
+    EXPECT_LT(relative_difference(field("whole35", "statistics.vtu", name), field("run", "statistics.vtu", name)), 1e-7)
+        << name;
   const RunResult zero = run({"simulate", tmp.path("case.toml"), "-o", tmp.path("zero"), "--end", "0"});
   EXPECT_EQ(zero.code, 2);
   EXPECT_NE(last_line(zero.err).find("the run's end must be a positive time in s (found 0)"), std::string::npos)
       << zero.err;
   EXPECT_FALSE(std::filesystem::exists(tmp.path("zero")));
+}
+
+// [output] statistics_from (issue 47): statistics.vtu holds, per point, the mean of the steps' flows
+// from then on and the RMS of the velocity's fluctuation (each step counting for its length, here all
+// equal: the plain mean of the frames saved at every step after it), to round-off.
+TEST(Cli, StatisticsAreTheMeanAndSpreadOfTheSteps) {
+  test::TemporaryFolder tmp;
+  ExampleCase example(tmp, "pipe.msh", {}, "0.04");  // 8 steps of 5 ms from rest: the flow speeds up
+  example.replace("save_every = 10", "save_every = 1");
+  example.replace("petsc_options = \"\"", "petsc_options = \"\"\n[output]\nstatistics_from = 0.02");
+  test::write_bytes(tmp.path("case.toml"), example.text);
+  const RunResult r = run({"simulate", tmp.path("case.toml"), "-o", tmp.path("run")});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("statistics.vtu: mean_velocity, rms_velocity (m/s), mean_pressure (Pa) over t = 0.02 to 0.04 s, "
+                       "4 steps"),
+            std::string::npos)
+      << r.err;
+  const Json statistics = Json::parse(read_text(tmp.path("run/summary.json")))["statistics"];
+  EXPECT_EQ(statistics["file"], "statistics.vtu");
+  EXPECT_EQ(statistics["steps"], 4);  // t = 0.025 .. 0.04 s: the steps after 0.02 s
+  EXPECT_NEAR(statistics["start_s"].get<double>(), 0.02, 1e-12);
+  EXPECT_NEAR(statistics["end_s"].get<double>(), 0.04, 1e-12);
+  const auto read = [&](const std::string& file, const std::string& name) {
+    std::vector<Field> fields;
+    io::read_vtu_volume(tmp.path("run/" + file), &fields);
+    for (const Field& f : fields)
+      if (f.name == name) return f.values;
+    ADD_FAILURE() << file << " has no " << name;
+    return std::vector<double>{};
+  };
+  std::vector<double> mean(read("fluid_000004.vtu", "velocity").size(), 0.0), square(mean.size(), 0.0),
+      pressure(mean.size() / 3, 0.0);
+  for (int frame = 4; frame <= 7; ++frame) {  // frame k at step k + 1, t = 5 (k + 1) ms
+    const std::vector<double> u = read(fmt::format("fluid_{:06d}.vtu", frame), "velocity");
+    const std::vector<double> p = read(fmt::format("fluid_{:06d}.vtu", frame), "pressure");
+    ASSERT_EQ(u.size(), mean.size());
+    for (size_t i = 0; i < u.size(); ++i) mean[i] += u[i] / 4, square[i] += u[i] * u[i] / 4;
+    for (size_t i = 0; i < p.size(); ++i) pressure[i] += p[i] / 4;
+  }
+  std::vector<double> rms(mean.size());
+  for (size_t i = 0; i < rms.size(); ++i) rms[i] = std::sqrt(std::max(0.0, square[i] - mean[i] * mean[i]));
+  EXPECT_LT(relative_difference(read("statistics.vtu", "mean_velocity"), mean), 1e-12);
+  EXPECT_LT(relative_difference(read("statistics.vtu", "rms_velocity"), rms), 1e-6);
+  EXPECT_LT(relative_difference(read("statistics.vtu", "mean_pressure"), pressure), 1e-12);
+  EXPECT_GT(*std::max_element(rms.begin(), rms.end()), 1e-3 * *std::max_element(mean.begin(), mean.end()));
+  // A start at or after the end, or negative: one line, exit 2.
+  example.replace("statistics_from = 0.02", "statistics_from = 0.04");
+  test::write_bytes(tmp.path("late.toml"), example.text);
+  const RunResult late = run({"simulate", tmp.path("late.toml"), "-o", tmp.path("late")});
+  EXPECT_EQ(late.code, 2);
+  EXPECT_NE(last_line(late.err).find("output.statistics_from"), std::string::npos) << late.err;
 }
 
 // mpirun -np 2, 3 and 4 give the one-process results to the solver's tolerance (issues 8, 28):
@@ -194,7 +262,7 @@ TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
   if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun is not installed";
   test::TemporaryFolder tmp;
   ExampleCase example(tmp, "pipe.msh", {}, "0.02");
-  example.replace("petsc_options = \"\"", "petsc_options = \"-ksp_rtol 1e-10\"");
+  example.replace("petsc_options = \"\"", "petsc_options = \"-ksp_rtol 1e-10\"\n[output]\nstatistics_from = 0.0");
   // An rcr outlet: its flux summed over the processes, its capacitor the same on each.
   example.replace("type = \"resistance\"", "type = \"rcr\"");
   example.replace("resistance = 1.0e8", "proximal_resistance = 1.0e7\ndistal_resistance = 9.0e7\ncapacitance = 1e-10");
@@ -276,6 +344,11 @@ TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
               1e-6);
     EXPECT_LT(relative_difference(point_data("one", "indices.vtp", "tawss"), point_data(folder, "indices.pvtp", "tawss")),
               1e-6);
+    for (const char* name : {"mean_velocity", "rms_velocity", "mean_pressure"})  // the time statistics (issue 47)
+      EXPECT_LT(relative_difference(point_data("one", "statistics.vtu", name),
+                                    point_data(folder, "statistics.pvtu", name)),
+                1e-6)
+          << name;
     // The flow-adapted interior's sizes (issue 52) read from the pieces: the one process's, point by point.
     const post::FluidSizes whole = post::fluid_error_sizes(tmp.path("one"), {}, 1.3);
     const post::FluidSizes pieces = post::fluid_error_sizes(tmp.path(folder), {}, 1.3);

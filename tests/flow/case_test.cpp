@@ -230,6 +230,20 @@ TEST(FlowCase, CheckpointsEverySaveUnlessToldOtherwise) {
   expect_error(kContract + std::string("[output]\nfluid_every = -2\n"), "output.fluid_every");
 }
 
+TEST(FlowCase, StatisticsFromATimeBeforeTheEnd) {
+  EXPECT_LT(parse_case(kContract, "case.toml").statistics_from, 0.0);  // none unless asked
+  const auto from = [](const std::string& value) {
+    const std::string text = std::string(kContract) + "[output]\nstatistics_from = " + value + "\n";
+    return parse_case(text, "case.toml").statistics_from;
+  };
+  EXPECT_DOUBLE_EQ(from("0.5"), 0.5);
+  EXPECT_DOUBLE_EQ(from("0"), 0.0);
+  expect_error(kContract + std::string("[output]\nstatistics_from = -0.1\n"), "output.statistics_from");
+  expect_error(kContract + std::string("[output]\nstatistics_from = 1.0\n"), "before time.end, 1 s");
+  expect_error(with(kContract, "steady = false", "steady = true") + "[output]\nstatistics_from = 0.1\n",
+               "a steady case has no time statistics");
+}
+
 TEST(FlowCase, TagsMustMatchTheMesh) {
   const FlowCase c = parse_case(kContract, "case.toml");
   try {

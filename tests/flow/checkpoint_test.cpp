@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstring>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -172,6 +173,64 @@ TEST(Checkpoint, PiecesMakeTheFlowWhole) {
   EXPECT_NE(refused({0}, 2).find("a piece of step"), std::string::npos) << refused({0}, 2);
   std::filesystem::remove(checkpoint_piece_path(path, whole.steps, 1));
   EXPECT_NE(refused({0}, 2).find("is missing"), std::string::npos) << refused({0}, 2);
+}
+
+// The time statistics' span in the checkpoint, their fields by point in the pieces (issue 47); a
+// checkpoint of format 5, made before them, still reads (without them).
+TEST(Checkpoint, PiecesKeepTheTimeStatistics) {
+  const test::TemporaryFolder folder;
+  const std::string path = folder.path("checkpoint.bin");
+  Checkpoint c = sample_checkpoint();
+  const FlowState whole = c.flow;
+  c.pieces = 1;
+  c.flow.velocity.clear();
+  c.flow.previous.clear();
+  c.flow.kinematic_pressure.clear();
+  FlowStatistics kept;
+  kept.add(0.2, 0.1, {Vec3(1, 2, 3), Vec3(4, 5, 6)}, {7.0, 8.0});
+  kept.add(0.3, 0.1, {Vec3(3, 2, 1), Vec3(6, 5, 4)}, {9.0, 10.0});
+  FlowStatistics::State own = kept.state();
+  c.statistics.start = own.start;
+  c.statistics.end = own.end;
+  c.statistics.weight = own.weight;
+  c.statistics.steps = own.steps;
+  write_checkpoint(path, c);
+  FlowState piece = whole;
+  piece.points = {0, 1};
+  write_checkpoint_piece(checkpoint_piece_path(path, whole.steps, 0), piece, own);
+  const Checkpoint r = read_checkpoint(path);
+  EXPECT_EQ(r.statistics.steps, 2);
+  EXPECT_DOUBLE_EQ(r.statistics.start, 0.1);
+  EXPECT_DOUBLE_EQ(r.statistics.weight, 0.2);
+  FlowStatistics::State read;
+  read_checkpoint_pieces(path, r, {0, 1}, 2, &read);
+  EXPECT_EQ(read.points, (std::vector<int>{0, 1}));
+  // At a process's local points (mesh numbers, in its order): the same statistics as never stopped.
+  FlowStatistics resumed(statistics_at(read, {1, 0}, path));
+  EXPECT_EQ(resumed.mean_velocity()[0], kept.mean_velocity()[1]);
+  EXPECT_EQ(resumed.rms_velocity()[1], kept.rms_velocity()[0]);
+  EXPECT_EQ(resumed.mean_pressure()[0], 9.0);
+  EXPECT_THROW(statistics_at(read, {2}, path), InputError);
+
+  // Format 5: the same bytes without the statistics (the checkpoint's last 28 bytes, the piece's three
+  // empty fields' counts), its version 5.
+  const auto as_format_5 = [](const std::string& file, size_t cut) {
+    std::string bytes = io::read_file(file);
+    bytes.resize(bytes.size() - cut);
+    const uint32_t five = 5;
+    std::memcpy(bytes.data() + bytes.find('\n') + 1, &five, sizeof five);  // the version after the magic line
+    io::write_text(file, bytes);
+  };
+  Checkpoint none = c;
+  none.statistics = {};
+  write_checkpoint(path, none);
+  write_checkpoint_piece(checkpoint_piece_path(path, whole.steps, 0), piece);
+  as_format_5(path, 3 * sizeof(double) + sizeof(int));
+  as_format_5(checkpoint_piece_path(path, whole.steps, 0), 3 * sizeof(uint64_t));
+  const Checkpoint old = read_checkpoint(path);
+  EXPECT_EQ(old.statistics.steps, 0);
+  EXPECT_EQ(read_checkpoint_pieces(path, old, {0, 1}, 2, &read).velocity, whole.velocity);
+  EXPECT_TRUE(read.mean_velocity.empty());
 }
 
 // A pipe's volume mesh in `folder`/pipe.msh and a pulsatile case on it ending at `steps` steps; its
