@@ -14,6 +14,9 @@
 # the steady jet's decay past z = 30 mm is the mesh's (three levels of the defaults' sizing, ratio 1.31
 # and 1.15 in h: 0.483, 0.542, 0.571 m/s at z = 40 mm against the labs' 0.625; JET=0.35 on the coarsest
 # walls: 0.640; docs/validation/fda_nozzle.md).
+# STATS_FROM=T (s) keeps the flow's time statistics from T to the end (statistics.vtu: the mean velocity and
+# pressure, the RMS of the velocity's fluctuation; `vesselmesh sample OUT/flow --statistics --line ...` reads
+# them): what the transitional jet at RE=2000 is compared by.
 # The measurements: ../shared/data/reference/fda_nozzle/SE_exp_0500.zip (RE=2000: SE_exp_2000.zip) beside the
 # checkout (or $FDA_ZIP); they are read from there, never copied into the project. Set NP=K to run the solver
 # under `mpirun -np K`. About 30 minutes on 2 cores with the defaults (490k unknowns, 16 s a step).
@@ -58,6 +61,7 @@ save_every = $(python3 -c "print(max(1, round($end / $dt / 5)))")
 initial = \"stokes\"           # the developed pipe flow from the start; the jet grows in time"
 fi
 write_nozzle_case "$out/case.toml" "$time_section" "$flow"
+if [[ -n "${STATS_FROM:-}" ]]; then printf '[output]\nstatistics_from = %s\n' "$STATS_FROM" >>"$out/case.toml"; fi
 run=("$vm" simulate "$out/case.toml" -o "$out/flow")
 if [[ -n "${NP:-}" ]]; then run=(mpirun --allow-run-as-root -np "$NP" "${run[@]}"); fi
 if [[ -x /usr/bin/time ]]; then run=(/usr/bin/time -f "simulate: %e s wall, %M KB peak" "${run[@]}"); fi

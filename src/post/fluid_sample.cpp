@@ -1,12 +1,15 @@
 #include "post/fluid_sample.h"
 
+#include "io/atomic_file.h"
 #include "io/vtk_formats.h"
 #include "mesh/error.h"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 namespace vesselmesh::post {
@@ -80,24 +83,70 @@ std::optional<TetLocator::Hit> TetLocator::locate(const Vec3& p) const {
   return std::nullopt;
 }
 
+namespace {
+
+// A point array of a fluid file: a vector of three components per point, or a scalar (empty where
+// the file has none of that name and size).
+std::vector<Vec3> point_vectors(const std::vector<Field>& fields, const std::string& name, size_t points) {
+  std::vector<Vec3> out;
+  for (const Field& f : fields)
+    if (f.name == name && f.components == 3 && f.values.size() == 3 * points) {
+      out.resize(points);
+      for (size_t i = 0; i < points; ++i) out[i] = Vec3(f.values[3 * i], f.values[3 * i + 1], f.values[3 * i + 2]);
+    }
+  return out;
+}
+std::vector<double> point_scalars(const std::vector<Field>& fields, const std::string& name, size_t points) {
+  for (const Field& f : fields)
+    if (f.name == name && f.components == 1 && f.values.size() == points) return f.values;
+  return {};
+}
+
+}  // namespace
+
 FluidField read_fluid_frame(const WallFrame& frame) {
   std::vector<Field> fields;
   FluidField field;
   field.mesh = io::read_vtu_volume(frame.file, &fields);
   field.time = frame.time;
-  for (const Field& f : fields) {
-    if (f.name == "velocity" && f.components == 3) {
-      field.velocity.resize(field.mesh.points.size());
-      for (size_t i = 0; i < field.velocity.size(); ++i)
-        field.velocity[i] = Vec3(f.values[3 * i], f.values[3 * i + 1], f.values[3 * i + 2]);
-    }
-    if (f.name == "pressure" && f.components == 1) field.pressure = f.values;
-  }
+  field.velocity = point_vectors(fields, "velocity", field.mesh.points.size());
+  field.pressure = point_scalars(fields, "pressure", field.mesh.points.size());
   if (field.velocity.empty() || field.pressure.empty())
     throw InputError(fmt::format("{}: has no point data `velocity` (3 components) and `pressure`; is it a fluid "
                                  "file of 'vesselmesh simulate'?",
                                  frame.file));
   return field;
+}
+
+FluidStatistics read_fluid_statistics(const std::string& directory) {
+  const std::string summary = directory + "/summary.json";
+  nlohmann::json kept;
+  try {
+    if (std::filesystem::exists(summary))
+      kept = nlohmann::json::parse(io::read_file(summary)).value("statistics", kept);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: {}", summary, e.what()));
+  }
+  if (!kept.is_object() || !kept.contains("file"))
+    throw InputError(fmt::format("{}: the run kept no time statistics (its summary.json names none): give its case "
+                                 "[output] statistics_from = T and run it again",
+                                 directory));
+  FluidStatistics out;
+  const std::string file = directory + "/" + kept.at("file").get<std::string>();
+  std::vector<Field> fields;
+  out.mean.mesh = io::read_vtu_volume(file, &fields);
+  const size_t points = out.mean.mesh.points.size();
+  out.mean.velocity = point_vectors(fields, "mean_velocity", points);
+  out.mean.pressure = point_scalars(fields, "mean_pressure", points);
+  out.rms = point_vectors(fields, "rms_velocity", points);
+  if (out.mean.velocity.empty() || out.mean.pressure.empty() || out.rms.empty())
+    throw InputError(fmt::format("{}: has no point data `mean_velocity`, `rms_velocity` (3 components) and "
+                                 "`mean_pressure`; is it the statistics file of 'vesselmesh simulate'?",
+                                 file));
+  out.start = kept.value("start_s", 0.0);
+  out.end = kept.value("end_s", 0.0);
+  out.mean.time = out.end;
+  return out;
 }
 
 FluidField fluid_at_time(const WallSeries& series, double time) {

@@ -52,6 +52,18 @@ FluidField read_fluid_frame(const WallFrame& frame);
 // The fluid at `time`, linear between the two saved frames around it (frames_around).
 FluidField fluid_at_time(const WallSeries& series, double time);
 
+// The time statistics of a run with [output] statistics_from (DIR/statistics.vtu, or .pvtu under
+// mpirun; flow/statistics.h): `mean` the time means (its velocity the mean velocity, its pressure the
+// mean pressure, its time the span's end), `rms` per point the RMS of the velocity's fluctuation about
+// its mean, per component (m/s), over t = start to end (s, from the run's summary). InputError naming
+// the folder where the run kept none.
+struct FluidStatistics {
+  FluidField mean;
+  std::vector<Vec3> rms;
+  double start = 0.0, end = 0.0;
+};
+FluidStatistics read_fluid_statistics(const std::string& directory);
+
 struct FluidSample {
   Vec3 point = Vec3::Zero();
   double distance = 0.0;  // from the line's start, in the mesh's unit

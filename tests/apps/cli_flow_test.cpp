@@ -243,6 +243,41 @@ TEST(Cli, StatisticsAreTheMeanAndSpreadOfTheSteps) {
   EXPECT_LT(relative_difference(read("statistics.vtu", "rms_velocity"), rms), 1e-6);
   EXPECT_LT(relative_difference(read("statistics.vtu", "mean_pressure"), pressure), 1e-12);
   EXPECT_GT(*std::max_element(rms.begin(), rms.end()), 1e-3 * *std::max_element(mean.begin(), mean.end()));
+  // `sample --statistics`: the mean at a point inside a cell is the mean of the frames' samples there (the
+  // interpolation is linear in the values); the RMS columns beside it, within the cell's spread.
+  const auto sampled = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), {"sample", tmp.path("run"), "--point", "c:0.3,0.2,4.1", "-o", tmp.path("s.csv")});
+    const RunResult s = run(args);
+    EXPECT_EQ(s.code, 0) << s.err;
+    std::vector<double> values;
+    std::istringstream lines(read_text(tmp.path("s.csv")));
+    for (std::string l; std::getline(lines, l);)
+      if (l.starts_with("c,")) {
+        std::istringstream cells(l.substr(2));
+        for (std::string c; std::getline(cells, c, ',');) values.push_back(std::stod(c));
+      }
+    return values;  // distance, x, y, z, inside, velocity (3), speed, pressure[, rms (3)]: 10 or 13
+  };
+  const std::vector<double> at_mean = sampled({"--statistics"});
+  ASSERT_EQ(at_mean.size(), 13u);
+  std::vector<double> frames_mean(10, 0.0);
+  for (int frame = 4; frame <= 7; ++frame) {
+    const std::vector<double> at = sampled({"--time", fmt::format("{:g}", 0.005 * (frame + 1))});
+    ASSERT_EQ(at.size(), 10u);
+    for (size_t k = 5; k < 10; ++k) frames_mean[k] += at[k] / 4;
+  }
+  for (size_t k : {5u, 6u, 7u, 9u})  // the velocity's components, the pressure
+    EXPECT_NEAR(at_mean[k], frames_mean[k], 1e-8 * (1.0 + std::abs(frames_mean[k]))) << k;  // the CSV's 9 digits
+  EXPECT_GT(at_mean[12], 0.0);  // the axial velocity's fluctuation as the flow speeds up
+  // A run that ends before statistics_from: a warning, no statistics; sampling them: one line, exit 2.
+  const RunResult early = run({"simulate", tmp.path("case.toml"), "-o", tmp.path("early"), "--end", "0.015"});
+  ASSERT_EQ(early.code, 0) << early.err;
+  EXPECT_NE(early.err.find("no time step after output.statistics_from = 0.02 s"), std::string::npos) << early.err;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path("early/statistics.vtu")));
+  const RunResult none =
+      run({"sample", tmp.path("early"), "--statistics", "--point", "c:0,0,4", "-o", tmp.path("n.csv")});
+  EXPECT_EQ(none.code, 2);
+  EXPECT_NE(last_line(none.err).find("kept no time statistics"), std::string::npos) << none.err;
   // A start at or after the end, or negative: one line, exit 2.
   example.replace("statistics_from = 0.02", "statistics_from = 0.04");
   test::write_bytes(tmp.path("late.toml"), example.text);
