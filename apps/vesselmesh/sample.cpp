@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include <optional>
+#include <utility>
 
 namespace vesselmesh::cli {
 
@@ -65,7 +66,7 @@ Command add_sample_command(CLI::App& parent) {
             std::optional<post::FluidStatistics> statistics;
             if (o->statistics) statistics = post::read_fluid_statistics(o->results);
             const double time = o->time.value_or(series.frames.back().time);
-            const post::FluidField field = statistics ? statistics->mean : post::fluid_at_time(series, time);
+            post::FluidField field = statistics ? std::move(statistics->mean) : post::fluid_at_time(series, time);
             const post::TetLocator locator(field.mesh);
             const std::string& unit = series.length_unit;
             const std::string what = statistics ? fmt::format("the time statistics over t = {:g} to {:g} s",
@@ -81,11 +82,10 @@ Command add_sample_command(CLI::App& parent) {
             };
             const std::vector<post::FluidSample> samples = sample(field);
             const size_t on_line = line ? static_cast<size_t>(o->samples) : 0;
-            std::vector<post::FluidSample> spread;  // the RMS of the fluctuation, as a velocity
+            std::vector<post::FluidSample> spread;  // the RMS of the fluctuation, sampled as a velocity
             if (statistics) {
-              post::FluidField rms = field;
-              rms.velocity = statistics->rms;
-              spread = sample(rms);
+              field.velocity.swap(statistics->rms);  // on the same mesh: no copy of it
+              spread = sample(field);
             }
             std::string csv = fmt::format(
                 "# vesselmesh sample of {} at {}: lengths in {}, velocity in m/s, pressure in Pa{}; inside = 0: "

@@ -41,6 +41,10 @@ struct Field {
   static Field vector(std::string name, const std::vector<Vec3>& values);
   static Field labels(std::string name, const std::vector<int>& values);
   int count() const { return components == 0 ? 0 : static_cast<int>(values.size()) / components; }
+  std::vector<Vec3> vectors() const;  // a field of 3 components as vectors (Field::vector's inverse)
 };
+
+// The field of this name with `components` components and `count` entries, or null.
+const Field* find_field(const std::vector<Field>& fields, const std::string& name, int components, size_t count);
 
 }  // namespace vesselmesh

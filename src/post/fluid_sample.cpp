@@ -85,21 +85,14 @@ std::optional<TetLocator::Hit> TetLocator::locate(const Vec3& p) const {
 
 namespace {
 
-// A point array of a fluid file: a vector of three components per point, or a scalar (empty where
-// the file has none of that name and size).
+// A point array of a fluid file: vectors or scalars (empty where the file has none of that name and size).
 std::vector<Vec3> point_vectors(const std::vector<Field>& fields, const std::string& name, size_t points) {
-  std::vector<Vec3> out;
-  for (const Field& f : fields)
-    if (f.name == name && f.components == 3 && f.values.size() == 3 * points) {
-      out.resize(points);
-      for (size_t i = 0; i < points; ++i) out[i] = Vec3(f.values[3 * i], f.values[3 * i + 1], f.values[3 * i + 2]);
-    }
-  return out;
+  const Field* f = find_field(fields, name, 3, points);
+  return f ? f->vectors() : std::vector<Vec3>{};
 }
 std::vector<double> point_scalars(const std::vector<Field>& fields, const std::string& name, size_t points) {
-  for (const Field& f : fields)
-    if (f.name == name && f.components == 1 && f.values.size() == points) return f.values;
-  return {};
+  const Field* f = find_field(fields, name, 1, points);
+  return f ? f->values : std::vector<double>{};
 }
 
 }  // namespace

@@ -67,12 +67,7 @@ WallField read_wall_frame(const WallFrame& frame) {
   io::SurfaceData data = io::read_vtk_surface(frame.file, io::VtkFormat::vtp);
   WallField field;
   field.time = frame.time;
-  for (const Field& f : data.point_data)
-    if (f.name == "wss" && f.components == 3) {
-      field.wss.resize(data.mesh.points.size());
-      for (size_t i = 0; i < field.wss.size(); ++i)
-        field.wss[i] = Vec3(f.values[3 * i], f.values[3 * i + 1], f.values[3 * i + 2]);
-    }
+  if (const Field* wss = find_field(data.point_data, "wss", 3, data.mesh.points.size())) field.wss = wss->vectors();
   if (field.wss.empty())
     throw InputError(fmt::format("{}: has no point data `wss` (3 components); is it a wall file of "
                                  "'vesselmesh simulate'?",
