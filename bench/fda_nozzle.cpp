@@ -39,6 +39,7 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -48,15 +49,27 @@ using namespace vesselmesh;
 using Curve = std::vector<std::pair<double, double>>;  // (z in mm, value), increasing z
 
 struct Lab {
-  std::string code;
+  std::string code;  // the laboratory's, and " LDV" for its LDV file
   Curve velocity, pressure,
-      wss;                           // along z: centerline axial velocity, wall pressure, wall shear stress
+      wss;  // along z: centerline axial velocity, wall pressure, wall shear stress
+  Curve axial_sd, radial_sd;  // along z: the standard deviation of the axial and radial velocity on
+                              // the centerline (m/s; the LDV file's profiles on the axis)
   std::map<double, Curve> profiles;  // z mm -> (signed radius mm, axial velocity m/s)
   double flow = 0.0;                 // m^3/s
 };
 
+// A profile's value on the axis (its point within 0.25 mm of it, the nearest), if it has one.
+std::optional<double> on_axis(const Curve& profile) {
+  const auto nearest = std::min_element(
+      profile.begin(), profile.end(),
+      [](const auto& a, const auto& b) { return std::abs(a.first) < std::abs(b.first); });
+  if (nearest == profile.end() || std::abs(nearest->first) > 0.25) return std::nullopt;
+  return nearest->second;
+}
+
 // The laboratories' files of a folder (*.txt, each lab's code the last word of its name); all must
-// give the same flow rate.
+// give the same flow rate. A laboratory without a centerline section (the LDV file) has its
+// profiles' values on the axis for it.
 std::vector<Lab> read_labs(const std::string& folder) {
   if (!std::filesystem::is_directory(folder))
     throw InputError(fmt::format("{}: no such folder (the measurements' experiment/ folder, unzipped)", folder));
@@ -68,10 +81,11 @@ std::vector<Lab> read_labs(const std::string& folder) {
   for (const auto& file : files) {
     Lab lab;
     const std::string stem = file.stem().string();
-    lab.code = stem.substr(stem.rfind('_') + 1);
+    lab.code = stem.substr(stem.rfind('_') + 1) + (stem.rfind("LDV", 0) == 0 ? " LDV" : "");
     const io::ConformanceFile data = io::read_conformance(file.string());
-    if (data.sections.empty()) {  // another format (the Re 2000 case's LDV file, one line of tabs)
-      fmt::print("{}: no plot- section (not a conformance file), left out\n", file.filename().string());
+    if (data.sections.empty()) {  // another format
+      fmt::print("{}: no plot- section (not a conformance file), left out\n",
+                 file.filename().string());
       continue;
     }
     lab.flow = data.flow;
@@ -82,16 +96,32 @@ std::vector<Lab> read_labs(const std::string& folder) {
       if (s.keyword == "plot-z-distribution-axial-velocity") lab.velocity = rows;
       if (s.keyword == "plot-wall-distribution-pressure") lab.pressure = rows;
       if (s.keyword == "plot-wall-distribution-wall-shear-stress") lab.wss = rows;
-      if (s.keyword == "plot-profile-axial-velocity-at-z" && !s.parameters.empty())
-        lab.profiles[std::round(s.parameters[0] * 1e4) / 10] = rows;  // the station in mm, to 0.1 mm
+      if (s.parameters.empty()) continue;
+      const double z = std::round(s.parameters[0] * 1e4) / 10;  // the station in mm, to 0.1 mm
+      if (s.keyword == "plot-profile-axial-velocity-at-z") lab.profiles[z] = rows;
+      for (auto [keyword, sd] :
+           {std::pair{"plot-profile-axial-velocity-stdev-at-z", &Lab::axial_sd},
+            {"plot-profile-radial-velocity-stdev-at-z", &Lab::radial_sd}})
+        if (const std::optional<double> v = on_axis(rows); s.keyword == keyword && v)
+          (lab.*sd).emplace_back(z, *v);
     }
-    if (lab.flow <= 0.0) throw InputError(fmt::format("{}: no fluid-volumetric-flow-rate", file.string()));
-    if (!labs.empty() && std::abs(lab.flow - labs[0].flow) > 1e-3 * labs[0].flow)
-      throw InputError(
-          fmt::format("{}: flow rate {:g} m^3/s, {} gives {:g}", file.string(), lab.flow, labs[0].code, labs[0].flow));
+    if (lab.velocity.empty())
+      for (const auto& [z, rows] : lab.profiles)
+        if (const std::optional<double> v = on_axis(rows)) lab.velocity.emplace_back(z, *v);
+    std::sort(lab.axial_sd.begin(), lab.axial_sd.end()),
+        std::sort(lab.radial_sd.begin(), lab.radial_sd.end());
+    if (lab.flow <= 0.0)
+      throw InputError(fmt::format("{}: no fluid-volumetric-flow-rate", file.string()));
     labs.push_back(std::move(lab));
   }
   if (labs.empty()) throw InputError(fmt::format("{}: no laboratory files (*.txt)", folder));
+  // By code: a laboratory's PIV file (the flow rate to five digits) before its LDV file (to three).
+  std::stable_sort(labs.begin(), labs.end(),
+                   [](const Lab& a, const Lab& b) { return a.code < b.code; });
+  for (const Lab& lab : labs)
+    if (std::abs(lab.flow - labs[0].flow) > 5e-3 * labs[0].flow)
+      throw InputError(fmt::format("{}: lab {}'s flow rate is {:g} m^3/s, lab {}'s {:g}", folder,
+                                   lab.code, lab.flow, labs[0].code, labs[0].flow));
   return labs;
 }
 
@@ -119,6 +149,13 @@ Stats at(const std::vector<Lab>& labs, Curve Lab::*which, double z, const std::m
   return s;
 }
 
+// A curve's value at station z, NaN where it has none.
+double value_at(const Curve& curve, double z) {
+  for (const auto& [zz, v] : curve)
+    if (std::abs(zz - z) < 1e-6) return v;
+  return std::nan("");
+}
+
 std::vector<double> stations(const std::vector<Lab>& labs, Curve Lab::*which) {
   std::vector<double> z;
   for (const Lab& lab : labs)
@@ -132,11 +169,22 @@ double rms(double sum2, int n) {
   return n ? std::sqrt(sum2 / n) : std::nan("");
 }
 
-// What the comparisons share: the laboratories, our last frame (and the one before, when saved),
-// the wall's frame, and the figures and tables gathered for comparison.json and comparison.md.
+// The run's time statistics, when it kept them (its summary.json names them).
+std::optional<post::FluidStatistics> statistics_of(const std::string& results) {
+  const std::string summary = results + "/summary.json";
+  if (!std::filesystem::exists(summary) ||
+      !nlohmann::json::parse(io::read_file(summary)).contains("statistics"))
+    return std::nullopt;
+  return post::read_fluid_statistics(results);
+}
+
+// What the comparisons share: the laboratories, our flow (the time means when the run kept its
+// statistics, else the last frame, and the one before when saved), the wall's last frame, and the
+// figures and tables gathered for comparison.json and comparison.md.
 struct Comparison {
   std::vector<Lab> labs;
   post::WallSeries series;
+  std::optional<post::FluidStatistics> statistics;  // its mean moved into `field`
   post::FluidField field;
   post::TetLocator locator;
   post::WallField wall;
@@ -148,7 +196,9 @@ struct Comparison {
   Comparison(const std::string& results, const std::string& experiment, std::string out_dir)
       : labs(read_labs(experiment)),
         series(post::read_wall_series(results, "fluid")),
-        field(post::read_fluid_frame(series.frames.back())),
+        statistics(statistics_of(results)),
+        field(statistics ? std::move(statistics->mean)
+                         : post::read_fluid_frame(series.frames.back())),
         locator(field.mesh),
         wall(post::read_wall_frame(post::read_wall_series(results).frames.back())),
         throat_mean(labs[0].flow / (M_PI * 4e-6)),
@@ -163,6 +213,16 @@ struct Comparison {
   double axial(const post::FluidField& f, double x, double y, double z) const {
     const post::FluidSample s = post::sample_points(f, locator, {Vec3(x, y, z)})[0];
     return s.inside ? s.velocity.z() : std::nan("");
+  }
+  // The RMS of our velocity's fluctuation at (x, y, z), per component (m/s); NaN outside the mesh
+  // or without statistics.
+  Vec3 fluctuation(double x, double y, double z) const {
+    const std::optional<post::TetLocator::Hit> hit = locator.locate(Vec3(x, y, z));
+    if (!hit || !statistics) return Vec3::Constant(std::nan(""));
+    Vec3 sum = Vec3::Zero();
+    for (int k = 0; k < 4; ++k)
+      sum += hit->weights[k] * statistics->rms[locator.tets()[hit->tet][k]];
+    return sum;
   }
   // At signed radius r of station z: the mean over four directions (x, y, -x, -y), those inside.
   double axial_at_radius(double r, double z) const {
@@ -233,12 +293,18 @@ void write_chart_along_z(const Comparison& c, const std::string& name, const std
 
 void compare_centerline(Comparison& c) {
   const std::string re = fmt::format("Re_throat = {:.0f}", 1056.0 * c.throat_mean * 4e-3 / 0.0035);
-  fmt::print("\ncenterline axial velocity (m/s)\n{:>9} {:>9} {:>17} {:>9} {:>9}\n", "z mm", "labs", "range", "ours",
-             "diff");
+  const std::string mean = c.statistics
+                               ? fmt::format(", ours the time mean over t = {:g} to {:g} s",
+                                             c.statistics->start, c.statistics->end)
+                               : "";
+  fmt::print("\ncenterline axial velocity (m/s{})\n{:>9} {:>9} {:>17} {:>9} {:>9}\n", mean, "z mm",
+             "labs", "range", "ours", "diff");
   std::string csv = "z_mm,labs_mean_m_s,labs_min_m_s,labs_max_m_s,labs,ours_m_s\n";
-  c.markdown += "| centreline velocity, z (mm) | labs' mean [range] (m/s) | ours | difference |\n|---|---|---|---|\n";
-  double sum2 = 0.0, worst = 0.0;
-  int n = 0, within = 0;
+  c.markdown +=
+      "| centreline velocity, z (mm) | labs' mean [range] (m/s) | ours | difference "
+      "|\n|---|---|---|---|\n";
+  double sum2 = 0.0, worst = 0.0, downstream2 = 0.0;
+  int n = 0, within = 0, downstream = 0;
   const std::vector<double> z_stations = stations(c.labs, &Lab::velocity);
   for (double z : z_stations) {
     const Stats s = at(c.labs, &Lab::velocity, z);
@@ -250,22 +316,35 @@ void compare_centerline(Comparison& c) {
     if (!std::isfinite(ours)) continue;
     sum2 += (ours - s.mean) * (ours - s.mean), worst = std::max(worst, std::abs(ours - s.mean)), ++n;
     within += s.low <= ours && ours <= s.high;
+    if (z >= 0.0) downstream2 += (ours - s.mean) * (ours - s.mean), ++downstream;
   }
   fmt::print(
-      "centerline velocity: RMS difference from the labs' mean {:.4f} m/s ({:.1f} % of the throat's mean velocity "
-      "{:.4f} m/s), worst {:.4f} m/s, over {} stations; {} within the labs' range\n",
-      rms(sum2, n), 100 * rms(sum2, n) / c.throat_mean, c.throat_mean, worst, n, within);
-  c.summary["centerline"] = {{"rms_percent", 100 * rms(sum2, n) / c.throat_mean}, {"stations", n}, {"within", within}};
+      "centerline velocity: RMS difference from the labs' mean {:.4f} m/s ({:.1f} % of the "
+      "throat's mean velocity "
+      "{:.4f} m/s), worst {:.4f} m/s, over {} stations; {} within the labs' range; downstream of "
+      "the expansion "
+      "(z >= 0) {:.1f} % over {} stations\n",
+      rms(sum2, n), 100 * rms(sum2, n) / c.throat_mean, c.throat_mean, worst, n, within,
+      100 * rms(downstream2, downstream) / c.throat_mean, downstream);
+  c.summary["centerline"] = {
+      {"rms_percent", 100 * rms(sum2, n) / c.throat_mean},
+      {"stations", n},
+      {"within", within},
+      {"downstream_rms_percent", 100 * rms(downstream2, downstream) / c.throat_mean},
+      {"time_mean", c.statistics.has_value()}};
   io::write_text(c.out + "/centerline_velocity.csv", csv);
 
   // Each laboratory on its own: ours against it, and it against the others' mean (their spread).
   fmt::print("per laboratory (RMS over its stations, % of the throat's mean velocity):\n{:>6} {:>9} {:>12} {:>18}\n",
              "lab", "stations", "ours - lab", "lab - others' mean");
   c.markdown += fmt::format(
-      "\nRMS difference {:.1f} % of the throat's mean velocity; {} of {} stations within the labs' range.\n\n| "
-      "laboratory | stations | ours − lab (RMS, % of the throat's mean) | lab − the others' mean "
-      "|\n|---|---|---|---|\n",
-      100 * rms(sum2, n) / c.throat_mean, within, n);
+      "\nRMS difference {:.1f} % of the throat's mean velocity ({:.1f} % downstream of the "
+      "expansion); {} of {} "
+      "stations within the labs' range.\n\n| laboratory | stations | ours − lab (RMS, % of the "
+      "throat's mean) | lab − "
+      "the others' mean |\n|---|---|---|---|\n",
+      100 * rms(sum2, n) / c.throat_mean, 100 * rms(downstream2, downstream) / c.throat_mean,
+      within, n);
   for (const Lab& lab : c.labs) {
     double ours2 = 0.0, spread2 = 0.0;
     int m = 0, k = 0;
@@ -287,9 +366,10 @@ void compare_centerline(Comparison& c) {
                                                  {"spread_rms_percent", 100 * rms(spread2, k) / c.throat_mean}};
   }
 
-  // Steadiness: the last frame against the one before.
-  if (c.series.frames.size() >= 2) {
-    const post::FluidField before = post::read_fluid_frame(c.series.frames[c.series.frames.size() - 2]);
+  // Steadiness: the last frame against the one before (not of time means).
+  if (c.series.frames.size() >= 2 && !c.statistics) {
+    const post::FluidField before =
+        post::read_fluid_frame(c.series.frames[c.series.frames.size() - 2]);
     double change = 0.0;
     for (double z : z_stations) {
       const double a = c.axial(c.field, 0.0, 0.0, z), b = c.axial(before, 0.0, 0.0, z);
@@ -299,8 +379,122 @@ void compare_centerline(Comparison& c) {
                before.time, c.field.time);
   }
 
-  write_chart_along_z(c, "centerline_velocity", "FDA nozzle, " + re + ": centerline axial velocity", "velocity (m/s)",
-                      &Lab::velocity, {}, -100.0, 100.0, [&](double z) { return c.axial(c.field, 0.0, 0.0, z); });
+  write_chart_along_z(
+      c, "centerline_velocity",
+      "FDA nozzle, " + re + ": centerline axial velocity" + (c.statistics ? " (time mean)" : ""),
+      "velocity (m/s)", &Lab::velocity, {}, -100.0, 100.0,
+      [&](double z) { return c.axial(c.field, 0.0, 0.0, z); });
+}
+
+// Where a centerline velocity u(z) first falls below `level` past the expansion (z >= 0), linear
+// between its samples; NaN when it does not within them.
+double first_fall(const Curve& u, double level) {
+  for (size_t i = 1; i < u.size(); ++i) {
+    const auto [z0, u0] = u[i - 1];
+    const auto [z1, u1] = u[i];
+    if (z0 >= 0.0 && u0 >= level && u1 < level) return z0 + (z1 - z0) * (u0 - level) / (u0 - u1);
+  }
+  return std::nan("");
+}
+
+// The jet's breakdown: where the (time-mean) centerline velocity has fallen to half the throat's
+// mean velocity, ours (sampled every 0.25 mm) and each laboratory's (linear between its stations).
+void compare_breakdown(Comparison& c) {
+  const double level = 0.5 * c.throat_mean;
+  Curve ours_curve;
+  for (int i = 0; i <= 400; ++i)
+    if (const double u = c.axial(c.field, 0.0, 0.0, 0.25 * i); std::isfinite(u))
+      ours_curve.emplace_back(0.25 * i, u);
+  const double ours = first_fall(ours_curve, level);
+  fmt::print(
+      "\njet breakdown: where the centerline velocity falls to half the throat's mean velocity "
+      "({:.3f} m/s)\n",
+      level);
+  c.markdown += fmt::format(
+      "\n| jet breakdown: the centreline velocity at half the throat's mean ({:.3f} m/s) | z (mm) "
+      "|\n|---|---|\n",
+      level);
+  double low = 1e300, high = -1e300;
+  for (const Lab& lab : c.labs) {
+    if (lab.velocity.empty()) continue;
+    const double z = first_fall(lab.velocity, level);
+    const std::string where =
+        std::isfinite(z) ? fmt::format("{:.1f}", z)
+                         : fmt::format("beyond {:g} (its last station, {:.2f} m/s)",
+                                       lab.velocity.back().first, lab.velocity.back().second);
+    fmt::print("{:>9}: {}\n", "lab " + lab.code, where);
+    c.markdown += fmt::format("| lab {} | {} |\n", lab.code, where);
+    if (std::isfinite(z)) low = std::min(low, z), high = std::max(high, z);
+    c.summary["breakdown"]["labs"][lab.code] =
+        std::isfinite(z) ? nlohmann::json(z) : nlohmann::json(nullptr);
+  }
+  const bool within = low <= ours && ours <= high;
+  const std::string where =
+      std::isfinite(ours) ? fmt::format("{:.1f}", ours) : "not before z = 100 mm";
+  fmt::print("{:>9}: {}{}\n", "ours", where, within ? " (within the labs' range)" : "");
+  c.markdown += fmt::format("| **vesselmesh** | **{}**{} |\n", where,
+                            within ? " (within the labs' range)" : "");
+  c.summary["breakdown"]["ours_mm"] =
+      std::isfinite(ours) ? nlohmann::json(ours) : nlohmann::json(nullptr);
+  c.summary["breakdown"]["within"] = within;
+}
+
+// The velocity's fluctuation on the centerline (runs that kept their time statistics): our RMS of
+// the axial and radial velocity's fluctuation against the laboratories' standard deviations (the
+// LDV file's), beside the mean velocities, and the chart of the axial one.
+void compare_fluctuations(Comparison& c) {
+  if (!c.statistics)
+    return fmt::print(
+        "\nfluctuations: the run kept no time statistics ([output] statistics_from)\n");
+  if (stations(c.labs, &Lab::axial_sd).empty())
+    return fmt::print("\nfluctuations: no laboratory measured them\n");
+  fmt::print(
+      "\ncenterline fluctuation (m/s): standard deviation (labs) and RMS (ours) of the velocity\n");
+  fmt::print("{:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "lab", "z mm", "lab mean", "ours",
+             "lab axial", "ours", "lab radial", "ours");
+  c.markdown +=
+      "\n| centreline, z (mm) | lab | mean axial velocity: lab / ours (m/s) | axial fluctuation: "
+      "lab's SD / our RMS "
+      "(m/s) | radial: lab / ours |\n|---|---|---|---|---|\n";
+  std::string csv =
+      "lab,z_mm,lab_mean_m_s,ours_mean_m_s,lab_axial_sd_m_s,ours_axial_rms_m_s,lab_radial_sd_m_s,"
+      "ours_radial_rms_m_s\n";
+  for (const Lab& lab : c.labs) {
+    double sum2 = 0.0;
+    int n = 0;
+    for (const auto& [z, sd] : lab.axial_sd) {
+      const Vec3 f = c.fluctuation(0.0, 0.0, z);
+      const double radial = std::sqrt(0.5 * (f.x() * f.x() + f.y() * f.y()));
+      const double mean = value_at(lab.velocity, z), radial_sd = value_at(lab.radial_sd, z);
+      const double ours_mean = c.axial(c.field, 0.0, 0.0, z);
+      fmt::print("{:>9} {:9.1f} {:9.3f} {:9.3f} {:9.3f} {:9.3f} {:9.3f} {:9.3f}\n", lab.code, z,
+                 mean, ours_mean, sd, f.z(), radial_sd, radial);
+      csv += fmt::format("{},{},{},{},{},{},{},{}\n", lab.code, z, mean, ours_mean, sd, f.z(),
+                         radial_sd, radial);
+      c.markdown +=
+          fmt::format("| {:g} | {} | {:.3f} / {:.3f} | {:.3f} / {:.3f} | {:.3f} / {:.3f} |\n", z,
+                      lab.code, mean, ours_mean, sd, f.z(), radial_sd, radial);
+      if (z >= 0.0 && std::isfinite(f.z())) sum2 += (f.z() - sd) * (f.z() - sd), ++n;
+    }
+    if (lab.axial_sd.empty()) continue;
+    fmt::print(
+        "lab {}: the axial fluctuation's RMS difference downstream of the expansion {:.1f} % of "
+        "the throat's "
+        "mean velocity over {} stations\n",
+        lab.code, 100 * rms(sum2, n) / c.throat_mean, n);
+    c.markdown += fmt::format(
+        "\nLab {}: the axial fluctuation's RMS difference downstream of the expansion {:.1f} % of "
+        "the throat's mean velocity ({} stations).\n",
+        lab.code, 100 * rms(sum2, n) / c.throat_mean, n);
+    c.summary["fluctuations"][lab.code] = {
+        {"axial_rms_percent", 100 * rms(sum2, n) / c.throat_mean}, {"stations", n}};
+  }
+  io::write_text(c.out + "/centerline_fluctuation.csv", csv);
+  write_chart_along_z(
+      c, "centerline_fluctuation",
+      "FDA nozzle: the axial velocity's fluctuation on the centerline (labs: SD; ours: RMS)",
+      "fluctuation (m/s)", &Lab::axial_sd, {}, -100.0, 100.0,
+      [&](double z) { return c.fluctuation(0.0, 0.0, z).z(); });
 }
 
 // Wall pressure, as differences from the most downstream tap every laboratory has.
@@ -504,16 +698,24 @@ int run(int argc, char** argv) {
   Comparison c(argv[1], argv[2], argv[3]);  // the inputs read before anything is written
   std::filesystem::create_directories(c.out);
   fmt::print(
-      "result: {} (t = {:g} s, {} points, {} tetrahedra); {} laboratories; flow {:g} mL/s, throat's mean velocity "
+      "result: {} ({}, {} points, {} tetrahedra); {} laboratories; flow {:g} mL/s, throat's mean "
+      "velocity "
       "{:.4f} m/s\n",
-      argv[1], c.field.time, c.field.mesh.points.size(), c.locator.tets().size(), c.labs.size(), c.labs[0].flow * 1e6,
+      argv[1],
+      c.statistics ? fmt::format("the time means over t = {:g} to {:g} s", c.statistics->start,
+                                 c.statistics->end)
+                   : fmt::format("t = {:g} s", c.field.time),
+      c.field.mesh.points.size(), c.locator.tets().size(), c.labs.size(), c.labs[0].flow * 1e6,
       c.throat_mean);
   compare_centerline(c);
+  compare_breakdown(c);
+  compare_fluctuations(c);
   compare_pressure(c);
   compare_profiles(c);
   compare_wall_shear(c);
   c.summary["points"] = c.field.mesh.points.size();
   c.summary["time_s"] = c.field.time;
+  if (c.statistics) c.summary["statistics_s"] = {c.statistics->start, c.statistics->end};
   c.summary["throat_mean_velocity_m_s"] = c.throat_mean;
   io::write_text(c.out + "/comparison.json", c.summary.dump(2) + "\n");
   io::write_text(c.out + "/comparison.md", c.markdown);

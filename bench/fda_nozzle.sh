@@ -16,7 +16,9 @@
 # walls: 0.640; docs/validation/fda_nozzle.md).
 # STATS_FROM=T (s) keeps the flow's time statistics from T to the end (statistics.vtu: the mean velocity and
 # pressure, the RMS of the velocity's fluctuation; `vesselmesh sample OUT/flow --statistics --line ...` reads
-# them): what the transitional jet at RE=2000 is compared by.
+# them): what the transitional jet at RE=2000 is compared by (bench_fda_nozzle then compares the time means, the
+# jet's breakdown and the centreline's fluctuation with the LDV file's). PERTURBATION=I disturbs the inflow (each
+# velocity component's RMS I times the local speed; the laboratories' inlet pipe had about 0.03-0.04).
 # The measurements: ../shared/data/reference/fda_nozzle/SE_exp_0500.zip (RE=2000: SE_exp_2000.zip) beside the
 # checkout (or $FDA_ZIP); they are read from there, never copied into the project. Set NP=K to run the solver
 # under `mpirun -np K`. About 30 minutes on 2 cores with the defaults (490k unknowns, 16 s a step).
@@ -60,7 +62,9 @@ end = $end
 save_every = $(python3 -c "print(max(1, round($end / $dt / 5)))")
 initial = \"stokes\"           # the developed pipe flow from the start; the jet grows in time"
 fi
-write_nozzle_case "$out/case.toml" "$time_section" "$flow"
+inlet_keys=""
+if [[ -n "${PERTURBATION:-}" ]]; then inlet_keys="perturbation = $PERTURBATION"; fi
+write_nozzle_case "$out/case.toml" "$time_section" "$flow" "$inlet_keys"
 if [[ -n "${STATS_FROM:-}" ]]; then printf '[output]\nstatistics_from = %s\n' "$STATS_FROM" >>"$out/case.toml"; fi
 run=("$vm" simulate "$out/case.toml" -o "$out/flow")
 if [[ -n "${NP:-}" ]]; then run=(mpirun --allow-run-as-root -np "$NP" "${run[@]}"); fi

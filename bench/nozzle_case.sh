@@ -3,7 +3,8 @@
 # station at +80 mm), its surface sized by the distance to the axis, TetGen inside, and its flow case
 # (fluid of the FDA's data files; flow rate theirs at Re_throat = 500 unless given).
 #   nozzle_mesh VM DIR POINTS_PER_CIRCLE HMAX_MM [VOLUME_OPTIONS...]  -> DIR/volume.msh
-#   write_nozzle_case FILE TIME_SECTION [FLOW_ML_S]  (the mesh: volume.msh beside FILE)
+#   write_nozzle_case FILE TIME_SECTION [FLOW_ML_S] [INLET_KEYS]  (the mesh: volume.msh beside FILE;
+#   INLET_KEYS: more lines for the inlet's [[boundary]], e.g. "perturbation = 0.04")
 nozzle_mesh() {
   local vm=$1 dir=$2 ppc=$3 hmax=$4
   shift 4
@@ -28,6 +29,7 @@ tag = "inlet"
 type = "velocity"
 profile = "parabolic"
 flow = ${3:-5.20624}               # mL/s
+${4:-}
 [[boundary]]
 tag = "outlet"
 type = "traction"

@@ -126,7 +126,7 @@ BoundaryCondition parse_boundary(const io::TomlReader& r, const toml::table* tab
                                  const std::string& path, std::set<std::string>& seen, double& backflow) {
   r.known_keys(*table, where, {"tag", "type", "profile", "flow", "waveform", "scale", "resistance", "backflow",
                                "harmonics", "proximal_resistance", "distal_resistance", "capacitance",
-                               "distal_pressure", "initial_pressure"});
+                               "distal_pressure", "initial_pressure", "perturbation"});
   const io::TomlView b(table);
   BoundaryCondition bc;
   bc.tag = r.text(b["tag"], where + ".tag", "");
@@ -150,6 +150,7 @@ BoundaryCondition parse_boundary(const io::TomlReader& r, const toml::table* tab
   only_for("scale", BoundaryType::velocity);
   only_for("resistance", BoundaryType::resistance);
   only_for("harmonics", BoundaryType::velocity);
+  only_for("perturbation", BoundaryType::velocity);
   for (const char* key : {"proximal_resistance", "distal_resistance", "capacitance", "distal_pressure",
                           "initial_pressure"})
     only_for(key, BoundaryType::rcr);
@@ -175,6 +176,11 @@ BoundaryCondition parse_boundary(const io::TomlReader& r, const toml::table* tab
       r.fail(where, "a velocity boundary needs `flow` (mL/s) or `waveform` (CSV: time s, flow mL/s)");
     }
     if (b["scale"]) bc.flow = bc.flow.scaled(r.number(b["scale"], where + ".scale", 1.0, false));
+    bc.perturbation = r.number(b["perturbation"], where + ".perturbation", 0.0, false);
+    if (bc.perturbation < 0.0 || bc.perturbation >= 1.0)
+      r.fail(where + ".perturbation", fmt::format("{:g}: the inflow's fluctuation, each component's RMS over the local "
+                                                  "speed, lies in [0, 1) (0.04: 4 %)",
+                                                  bc.perturbation));
   }
   if (bc.type == BoundaryType::resistance) {
     if (!b["resistance"]) r.fail(where + ".resistance", "missing: the resistance in Pa s/m3");
@@ -269,8 +275,11 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
   if (!root["boundary"] || !root["boundary"].is_array_of_tables())
     r.fail("boundary", "missing: one [[boundary]] table per tag of the mesh");
   std::set<std::string> seen;
-  for (const auto& [where, table] : r.tables(root, "boundary"))
+  for (const auto& [where, table] : r.tables(root, "boundary")) {
     c.boundaries.push_back(parse_boundary(r, table, where, path, seen, c.backflow));
+    if (c.steady && c.boundaries.back().perturbation > 0.0)
+      r.fail(where + ".perturbation", "a steady case has no fluctuation in time: remove it, or run in time");
+  }
 
   const io::TomlView solver = root["solver"];
   if (solver && !solver.is_table()) r.fail("solver", "expected a table [solver]");

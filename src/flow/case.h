@@ -38,7 +38,9 @@
 // only — the wall, wall_*.vtp, is saved every save_every steps whatever it is: a fine mesh's
 // volume files are what fills a disk), statistics_from = T (s; unsteady runs: the time mean of the
 // velocity and the pressure and the RMS of the velocity's fluctuation from T to the end, per point,
-// in statistics.vtu, flow/statistics.h; default none).
+// in statistics.vtu, flow/statistics.h; default none); [boundary] perturbation = I (velocity
+// boundaries of unsteady cases: a disturbance added to the profile, each component's RMS over time
+// I times the local speed, its net flow removed; flow/inflow_perturbation.h; default 0, none).
 // A positive flow enters the domain, a negative one leaves it.
 #pragma once
 
@@ -91,6 +93,8 @@ struct BoundaryCondition {
   double distal_pressure = 0.0;                               // Pa
   std::optional<double> initial_pressure;                     // Pa
   int harmonics = 20;         // womersley: Fourier harmonics of the waveform kept
+  double perturbation = 0.0;  // velocity: the inflow's disturbance, each component's RMS over the local
+                              // speed (flow/inflow_perturbation.h; 0: none)
 };
 
 struct FlowCase {

@@ -203,6 +203,17 @@ void NavierStokes::Impl::build_boundaries(const MeshPart& part) {
       if (rho[k] >= 0.0)
         shape[k] = b.condition.profile == Profile::plug ? 1.0 : std::max(0.0, 1.0 - rho[k] * rho[k]);
     b.shape = unit_flux(shape);
+    if (b.condition.perturbation > 0.0) {
+      double mean_flow = 0.0;  // m3/s: the flow's mean magnitude over its period (the flow, if constant)
+      const double period = b.condition.flow.period();
+      for (int i = 0; i < 256; ++i) mean_flow += std::abs(b.condition.flow(period * i / 256.0)) * 1e-6 / 256.0;
+      if (mean_flow > 0.0) b.perturbation.emplace(b.condition.perturbation, radius, mean_flow / b.area);
+      for (const BoundaryFace& f : b.faces) b.face_nodes.push_back({at[f.v[0]], at[f.v[1]], at[f.v[2]]});
+      reporter->info(fmt::format("boundary {}: the inflow disturbed, each component's RMS {:g} % of the local speed, "
+                                 "eddies of {:.3g} to {:.3g} mm at about {:.3g} m/s",
+                                 b.condition.tag, 100.0 * b.condition.perturbation, 0.25e3 * radius, 1e3 * radius,
+                                 mean_flow / b.area));
+    }
 
     if (b.condition.profile == Profile::womersley) {
       const Womersley w = Womersley::from_waveform(b.condition.flow, b.condition.harmonics, radius, nu);
@@ -247,14 +258,31 @@ void NavierStokes::Impl::set_dirichlet(double time) {
     std::vector<Complex> phase;
     for (size_t h = 0; h < b.harmonic_flow.size(); ++h)
       phase.push_back(b.harmonic_flow[h] * std::exp(Complex(0.0, static_cast<double>(h) * b.omega * time)));
+    std::vector<double> speed(b.nodes.size(), 0.0);  // wall points keep 0
     for (size_t k = 0; k < b.nodes.size(); ++k) {
-      if (b.shape[k] == 0.0) continue;  // wall points keep 0
-      double speed = q * b.shape[k];
+      if (b.shape[k] == 0.0) continue;
+      speed[k] = q * b.shape[k];
       if (!phase.empty()) {
-        speed = 0.0;
-        for (size_t h = 0; h < phase.size(); ++h) speed += (phase[h] * b.harmonic_shape[h][k]).real();
+        speed[k] = 0.0;
+        for (size_t h = 0; h < phase.size(); ++h) speed[k] += (phase[h] * b.harmonic_shape[h][k]).real();
       }
-      const Vec3 value = -speed * b.normal;
+    }
+    std::vector<Vec3> added(b.nodes.size(), Vec3::Zero());  // the disturbance, m/s
+    if (b.perturbation) {
+      for (size_t k = 0; k < b.nodes.size(); ++k)
+        if (b.shape[k] != 0.0) added[k] = std::abs(speed[k]) * (*b.perturbation)(points[b.nodes[k]] - b.center, time);
+      double inflow = 0.0;  // its net flow into the domain, removed along the profile's shape (of unit flow)
+      for (size_t f = 0; f < b.faces.size(); ++f)
+        if (b.counted[f]) {
+          const std::array<int, 3>& v = b.face_nodes[f];
+          inflow -= b.faces[f].area / 3.0 * (added[v[0]] + added[v[1]] + added[v[2]]).dot(b.normal);
+        }
+      inflow = parallel::sum_all({inflow})[0];
+      for (size_t k = 0; k < b.nodes.size(); ++k) added[k] += inflow * b.shape[k] * b.normal;
+    }
+    for (size_t k = 0; k < b.nodes.size(); ++k) {
+      if (b.shape[k] == 0.0) continue;
+      const Vec3 value = added[k] - speed[k] * b.normal;
       for (int i = 0; i < 3; ++i) dirichlet[kBlock * b.nodes[k] + i] = value[i];
     }
   }

@@ -11,6 +11,7 @@
 
 #include "flow/navier_stokes.h"
 
+#include "flow/inflow_perturbation.h"
 #include "flow/stabilized_cell.h"
 #include "flow/womersley.h"
 #include "mesh/error.h"
@@ -22,10 +23,12 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 #include <type_traits>
 
@@ -63,6 +66,10 @@ struct Boundary {
   std::vector<Complex> harmonic_flow;
   double omega = 0.0;
   std::vector<std::vector<Complex>> harmonic_shape;
+  // Velocity boundaries with a perturbation: the disturbance, and per face its points' indices
+  // in `nodes` (to remove the disturbance's net flow).
+  std::optional<InflowPerturbation> perturbation;
+  std::vector<std::array<int, 3>> face_nodes;
 };
 
 }  // namespace navier_stokes_parts

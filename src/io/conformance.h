@@ -3,6 +3,10 @@
 // then sections, each a line `plot-<what> [parameters...]` (a profile's station, for example
 // `plot-profile-axial-velocity-at-z -0.02 0`), a line with the row count, and that many rows
 // `position value`. Sections the data's authors withdrew are named `deleted-plot-...`.
+// The LDV files of the Re 2000 case are another format (fields separated by tabs and carriage
+// returns, sections `<what>-at-z=`, the station, the count, the rows), read into the same: each
+// section named `plot-profile-<what>-at-z` with the station as its first parameter, for example
+// `plot-profile-axial-velocity-stdev-at-z` (the standard deviation of the axial velocity).
 #pragma once
 
 #include <string>
@@ -25,8 +29,8 @@ struct ConformanceFile {
 };
 
 // Reads one file. InputError naming the file, the section and the row when a section's count line
-// or a row is not numbers, or the file ends before a section's last row; an unreadable file too.
-// A file with no plot- section (another format) gives no sections.
+// or a row is not numbers, or the file ends before a section's last row (the LDV format: the
+// field's number); an unreadable file too. A file with no plot- section gives no sections.
 ConformanceFile read_conformance(const std::string& path);
 
 }  // namespace vesselmesh::io

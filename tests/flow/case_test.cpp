@@ -230,6 +230,25 @@ TEST(FlowCase, CheckpointsEverySaveUnlessToldOtherwise) {
   expect_error(kContract + std::string("[output]\nfluid_every = -2\n"), "output.fluid_every");
 }
 
+// Issue 47: [boundary] perturbation, the inflow's disturbance (none unless asked), on velocity
+// boundaries of unsteady cases only, a fraction in [0, 1).
+TEST(FlowCase, PerturbationOfAnInflow) {
+  EXPECT_EQ(parse_case(kContract, "case.toml").boundaries[0].perturbation, 0.0);
+  EXPECT_DOUBLE_EQ(
+      parse_case(with(kContract, "flow = 5.0", "flow = 5.0\nperturbation = 0.04"), "case.toml")
+          .boundaries[0]
+          .perturbation,
+      0.04);
+  expect_error(with(kContract, "flow = 5.0", "flow = 5.0\nperturbation = 1.5"),
+               "boundary[0].perturbation");
+  expect_error(with(kContract, "flow = 5.0", "flow = 5.0\nperturbation = -0.1"), "lies in [0, 1)");
+  expect_error(with(kContract, "type = \"wall\"", "type = \"wall\"\nperturbation = 0.04"),
+               "not used by a wall boundary");
+  expect_error(with(with(kContract, "steady = false", "steady = true"), "flow = 5.0",
+                    "flow = 5.0\nperturbation = 0.04"),
+               "a steady case has no fluctuation in time");
+}
+
 TEST(FlowCase, StatisticsFromATimeBeforeTheEnd) {
   EXPECT_LT(parse_case(kContract, "case.toml").statistics_from, 0.0);  // none unless asked
   const auto from = [](const std::string& value) {

@@ -506,7 +506,9 @@ TEST(NavierStokes, VariableStepBdfWeightsAreSecondOrder) {
     EXPECT_NEAR(b.convect_now * line(t1) - b.convect_before * line(t0), line(t2), 1e-14) << w;
     // The constant step's weights on these steps miss the derivative by O(1) for w != 1.
     const double constant = (1.5 * u(t2) - 2.0 * u(t1) + 0.5 * u(t0)) / dt - (-2.0 + 80.0 * t2);
-    if (w != 1.0) EXPECT_GT(std::abs(constant), 1e-3) << w;
+    if (w != 1.0) {
+      EXPECT_GT(std::abs(constant), 1e-3) << w;
+    }
   }
 }
 

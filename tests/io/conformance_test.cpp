@@ -5,11 +5,21 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <map>
 #include <string>
 
 namespace vesselmesh::io {
 namespace {
+
+// The header's fluid: the FDA's blood analogue (1056 kg/m3, 0.0035 Pa s) at the flow rate given.
+void expect_fda_fluid(const ConformanceFile& file, double flow) {
+  EXPECT_DOUBLE_EQ(file.flow, flow);
+  EXPECT_DOUBLE_EQ(file.density, 1056.0);
+  EXPECT_DOUBLE_EQ(file.viscosity, 0.0035);
+}
 
 // A file as the FDA writes them: the header's fluid, a withdrawn section left out, a section
 // with parameters, rows kept in the file's order (tabs and trailing blanks as theirs).
@@ -33,9 +43,7 @@ TEST(Conformance, ReadsTheHeadersFluidAndEveryPlotSection) {
                     "1\n"
                     "-1.0E-003  6.5E-001\n");
   const ConformanceFile file = read_conformance(path);
-  EXPECT_DOUBLE_EQ(file.flow, 5.20624e-6);
-  EXPECT_DOUBLE_EQ(file.density, 1056.0);
-  EXPECT_DOUBLE_EQ(file.viscosity, 0.0035);
+  expect_fda_fluid(file, 5.20624e-6);
   ASSERT_EQ(file.sections.size(),
             2u);  // the deleted- section's rows are not taken for sections either
   EXPECT_EQ(file.sections[0].keyword, "plot-z-distribution-axial-velocity");
@@ -71,6 +79,46 @@ TEST(Conformance, BadFilesSayWhereAndWhat) {
   EXPECT_TRUE(read_conformance(folder.path("other.txt")).sections.empty());
 }
 
+// The LDV files' format (the Re 2000 case's): tabs and carriage returns, blank fields, sections
+// `<what>-at-z=` with their station and count, read as plot-profile-<what>-at-z sections; a row
+// cut short and a count that is not one say which section and field.
+TEST(Conformance, ReadsTheLdvFilesTabbedFormat) {
+  test::TemporaryFolder folder;
+  const std::string path = folder.path("ldv.txt");
+  test::write_bytes(
+      path,
+      "dataset-comment\tLDV Data - FDA Nozzle Model\t\rfluid-density\t1056\t\r"
+      "fluid-viscosity\t0.0035\rfluid-volumetric-flow-rate\t2.08E-05\t\r"
+      "axial-velocity-at-z=\t-0.088\t2\t\t-6.00E-03\t0.0000E+00\t1.99E-17\t3.6135E-01\t\r"
+      "axial-velocity-stdev-at-z=\t0.06\t1\t\t0.0\t5.785E-01\t\r");
+  const ConformanceFile file = read_conformance(path);
+  expect_fda_fluid(file, 2.08e-5);
+  ASSERT_EQ(file.sections.size(), 2u);
+  EXPECT_EQ(file.sections[0].keyword, "plot-profile-axial-velocity-at-z");
+  ASSERT_EQ(file.sections[0].parameters.size(), 1u);
+  EXPECT_DOUBLE_EQ(file.sections[0].parameters[0], -0.088);
+  ASSERT_EQ(file.sections[0].rows.size(), 2u);
+  EXPECT_DOUBLE_EQ(file.sections[0].rows[0].first, -6e-3);
+  EXPECT_DOUBLE_EQ(file.sections[0].rows[1].second, 0.36135);
+  EXPECT_EQ(file.sections[1].keyword, "plot-profile-axial-velocity-stdev-at-z");
+  EXPECT_DOUBLE_EQ(file.sections[1].parameters[0], 0.06);
+  ASSERT_EQ(file.sections[1].rows.size(), 1u);
+  EXPECT_DOUBLE_EQ(file.sections[1].rows[0].second, 0.5785);
+
+  const auto error = [&](const std::string& text) {
+    return test::input_error(folder.path("bad.txt"), text,
+                             [](const std::string& f) { read_conformance(f); });
+  };
+  EXPECT_NE(error("axial-velocity-at-z=\t0.0\t2\t0.0\t1.0\t0.001\r")
+                .find("the file ends where row 2 of section axial-velocity-at-z= at z = 0"),
+            std::string::npos);
+  EXPECT_NE(error("axial-velocity-at-z=\t0.0\t2\t0.0\tx\r").find("field 5 ('x'), row 1 of section"),
+            std::string::npos);
+  EXPECT_NE(
+      error("axial-velocity-at-z=\t0.0\t1.5\t0.0\t1.0\r").find("row count 1.5 is not a count"),
+      std::string::npos);
+}
+
 // The FDA nozzle's laminar case as published (one laboratory's file out of the zip): its flow rate
 // gives Re_throat = 500, its centerline and profiles are there, and lab 468's wall shear stress.
 TEST(Conformance, ReadsTheFdaNozzlesLaminarMeasurements) {
@@ -95,6 +143,40 @@ TEST(Conformance, ReadsTheFdaNozzlesLaminarMeasurements) {
   EXPECT_EQ(profiles, 9);
   EXPECT_TRUE(centerline);
   EXPECT_TRUE(wall_shear);
+}
+
+// The transitional case's LDV file as published (lab 297): Re_throat = 2000, twelve stations of
+// the axial velocity and its standard deviation, the jet steady and quiet at the expansion and
+// broken down at z = 60 mm (its fluctuation a quarter of the throat's mean velocity or more).
+TEST(Conformance, ReadsTheFdaNozzlesTransitionalLdvMeasurements) {
+  VESSELMESH_REQUIRE_SHARED(zip, "reference/fda_nozzle/SE_exp_2000.zip");
+  test::TemporaryFolder folder;
+  const std::string path = folder.path("297.txt");
+  const std::string command =
+      "unzip -p '" + zip + "' experiment/LDV_Sudden_Expansion_2000_297.txt > '" + path + "'";
+  if (std::system(command.c_str()) != 0)
+    GTEST_SKIP() << "unzip could not extract the laboratory's file";
+  const ConformanceFile file = read_conformance(path);
+  const double throat_velocity = file.flow / (3.141592653589793 * 4e-6);
+  EXPECT_NEAR(file.density * throat_velocity * 4e-3 / file.viscosity, 2000.0, 10.0);
+  std::map<std::string, int> stations;
+  for (const ConformanceSection& s : file.sections) {
+    ++stations[s.keyword];
+    ASSERT_FALSE(s.parameters.empty());
+    if (s.keyword != "plot-profile-axial-velocity-stdev-at-z") continue;
+    const auto axis = std::min_element(
+        s.rows.begin(), s.rows.end(),
+        [](const auto& a, const auto& b) { return std::abs(a.first) < std::abs(b.first); });
+    ASSERT_NE(axis, s.rows.end());
+    if (std::abs(s.parameters[0]) < 1e-9) {
+      EXPECT_LT(axis->second, 0.1 * throat_velocity);
+    }
+    if (std::abs(s.parameters[0] - 0.06) < 1e-9) {
+      EXPECT_GT(axis->second, 0.25 * throat_velocity);
+    }
+  }
+  EXPECT_EQ(stations["plot-profile-axial-velocity-at-z"], 12);
+  EXPECT_EQ(stations["plot-profile-axial-velocity-stdev-at-z"], 12);
 }
 
 }  // namespace
