@@ -19,6 +19,9 @@
 # them): what the transitional jet at RE=2000 is compared by (bench_fda_nozzle then compares the time means, the
 # jet's breakdown and the centreline's fluctuation with the LDV file's). PERTURBATION=I disturbs the inflow (each
 # velocity component's RMS I times the local speed; the laboratories' inlet pipe had about 0.03-0.04).
+# Re 2000 as docs/validation/fda_nozzle.md has it: RE=2000 STATS_FROM=0.1 PERTURBATION=0.04 bench/fda_nozzle.sh
+# build OUT 30 0.7 0.00085 0.5 (663k unknowns, a largest CFL number of 55: at 128, steps of 2 ms, the jet breaks
+# down falsely at 31 mm; about 35 minutes on one process): the breakdown at 74.0 mm, the labs' 57-76.
 # The measurements: ../shared/data/reference/fda_nozzle/SE_exp_0500.zip (RE=2000: SE_exp_2000.zip) beside the
 # checkout (or $FDA_ZIP); they are read from there, never copied into the project. Set NP=K to run the solver
 # under `mpirun -np K`. About 30 minutes on 2 cores with the defaults (490k unknowns, 16 s a step).

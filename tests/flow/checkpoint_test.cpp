@@ -581,5 +581,27 @@ TEST(Simulate, ARestartThatExtendsTheRunTakesTheIndicesOverTheNewLastPeriod) {
       << warnings.text;
 }
 
+// Issue 47: a disturbed inflow is a function of the place and the time, so a run stopped and
+// restarted goes on with it as the run that was not stopped (to the linear solver's tolerance); the
+// disturbance changes the flow (against the same run without it).
+TEST(Simulate, ARestartGoesOnWithTheSameDisturbedInflow) {
+  const test::TemporaryFolder folder;
+  const auto disturbed = [&](int steps) {
+    FlowCase c = read_case(pipe_case(folder, steps));
+    EXPECT_EQ(c.boundaries[0].tag, "inlet");
+    c.boundaries[0].perturbation = 0.05;
+    return c;
+  };
+  const FlowCase whole = disturbed(12);
+  const SimulationSummary a = simulate(whole, folder.path("whole"));
+  simulate(disturbed(8), folder.path("parts"));
+  const SimulationSummary b = simulate(whole, folder.path("parts"), "", silent_reporter(), /*restart=*/true);
+  EXPECT_EQ(b.steps, 12);
+  const Results ra = results_in(folder.path("whole"), a.saved - 1), rb = results_in(folder.path("parts"), b.saved - 1);
+  EXPECT_LT(largest_difference(ra.velocity, rb.velocity), 1e-5);
+  const SimulationSummary q = simulate(read_case(pipe_case(folder, 12)), folder.path("quiet"));
+  EXPECT_GT(largest_difference(ra.velocity, results_in(folder.path("quiet"), q.saved - 1).velocity), 1e-3);
+}
+
 }  // namespace
 }  // namespace vesselmesh::flow
