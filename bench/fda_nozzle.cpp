@@ -108,8 +108,8 @@ std::vector<Lab> read_labs(const std::string& folder) {
     if (lab.velocity.empty())
       for (const auto& [z, rows] : lab.profiles)
         if (const std::optional<double> v = on_axis(rows)) lab.velocity.emplace_back(z, *v);
-    std::sort(lab.axial_sd.begin(), lab.axial_sd.end()),
-        std::sort(lab.radial_sd.begin(), lab.radial_sd.end());
+    std::sort(lab.axial_sd.begin(), lab.axial_sd.end());
+    std::sort(lab.radial_sd.begin(), lab.radial_sd.end());
     if (lab.flow <= 0.0)
       throw InputError(fmt::format("{}: no fluid-volumetric-flow-rate", file.string()));
     labs.push_back(std::move(lab));
@@ -318,33 +318,28 @@ void compare_centerline(Comparison& c) {
     within += s.low <= ours && ours <= s.high;
     if (z >= 0.0) downstream2 += (ours - s.mean) * (ours - s.mean), ++downstream;
   }
+  const double downstream_percent = 100 * rms(downstream2, downstream) / c.throat_mean;
   fmt::print(
-      "centerline velocity: RMS difference from the labs' mean {:.4f} m/s ({:.1f} % of the "
-      "throat's mean velocity "
-      "{:.4f} m/s), worst {:.4f} m/s, over {} stations; {} within the labs' range; downstream of "
-      "the expansion "
+      "centerline velocity: RMS difference from the labs' mean {:.4f} m/s ({:.1f} % of the throat's mean velocity "
+      "{:.4f} m/s), worst {:.4f} m/s, over {} stations; {} within the labs' range; downstream of the expansion "
       "(z >= 0) {:.1f} % over {} stations\n",
-      rms(sum2, n), 100 * rms(sum2, n) / c.throat_mean, c.throat_mean, worst, n, within,
-      100 * rms(downstream2, downstream) / c.throat_mean, downstream);
-  c.summary["centerline"] = {
-      {"rms_percent", 100 * rms(sum2, n) / c.throat_mean},
-      {"stations", n},
-      {"within", within},
-      {"downstream_rms_percent", 100 * rms(downstream2, downstream) / c.throat_mean},
-      {"time_mean", c.statistics.has_value()}};
+      rms(sum2, n), 100 * rms(sum2, n) / c.throat_mean, c.throat_mean, worst, n, within, downstream_percent,
+      downstream);
+  c.summary["centerline"] = {{"rms_percent", 100 * rms(sum2, n) / c.throat_mean},
+                             {"stations", n},
+                             {"within", within},
+                             {"downstream_rms_percent", downstream_percent},
+                             {"time_mean", c.statistics.has_value()}};
   io::write_text(c.out + "/centerline_velocity.csv", csv);
 
   // Each laboratory on its own: ours against it, and it against the others' mean (their spread).
   fmt::print("per laboratory (RMS over its stations, % of the throat's mean velocity):\n{:>6} {:>9} {:>12} {:>18}\n",
              "lab", "stations", "ours - lab", "lab - others' mean");
   c.markdown += fmt::format(
-      "\nRMS difference {:.1f} % of the throat's mean velocity ({:.1f} % downstream of the "
-      "expansion); {} of {} "
-      "stations within the labs' range.\n\n| laboratory | stations | ours − lab (RMS, % of the "
-      "throat's mean) | lab − "
+      "\nRMS difference {:.1f} % of the throat's mean velocity ({:.1f} % downstream of the expansion); {} of {} "
+      "stations within the labs' range.\n\n| laboratory | stations | ours − lab (RMS, % of the throat's mean) | lab − "
       "the others' mean |\n|---|---|---|---|\n",
-      100 * rms(sum2, n) / c.throat_mean, 100 * rms(downstream2, downstream) / c.throat_mean,
-      within, n);
+      100 * rms(sum2, n) / c.throat_mean, downstream_percent, within, n);
   for (const Lab& lab : c.labs) {
     double ours2 = 0.0, spread2 = 0.0;
     int m = 0, k = 0;
@@ -406,13 +401,10 @@ void compare_breakdown(Comparison& c) {
     if (const double u = c.axial(c.field, 0.0, 0.0, 0.25 * i); std::isfinite(u))
       ours_curve.emplace_back(0.25 * i, u);
   const double ours = first_fall(ours_curve, level);
-  fmt::print(
-      "\njet breakdown: where the centerline velocity falls to half the throat's mean velocity "
-      "({:.3f} m/s)\n",
-      level);
+  fmt::print("\njet breakdown: where the centerline velocity falls to half the throat's mean velocity ({:.3f} m/s)\n",
+             level);
   c.markdown += fmt::format(
-      "\n| jet breakdown: the centreline velocity at half the throat's mean ({:.3f} m/s) | z (mm) "
-      "|\n|---|---|\n",
+      "\n| jet breakdown: the centreline velocity at half the throat's mean ({:.3f} m/s) | z (mm) |\n|---|---|\n",
       level);
   double low = 1e300, high = -1e300;
   for (const Lab& lab : c.labs) {
@@ -453,8 +445,7 @@ void compare_fluctuations(Comparison& c) {
   fmt::print("{:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "lab", "z mm", "lab mean", "ours",
              "lab axial", "ours", "lab radial", "ours");
   c.markdown +=
-      "\n| centreline, z (mm) | lab | mean axial velocity: lab / ours (m/s) | axial fluctuation: "
-      "lab's SD / our RMS "
+      "\n| centreline, z (mm) | lab | mean axial velocity: lab / ours (m/s) | axial fluctuation: lab's SD / our RMS "
       "(m/s) | radial: lab / ours |\n|---|---|---|---|---|\n";
   std::string csv =
       "lab,z_mm,lab_mean_m_s,ours_mean_m_s,lab_axial_sd_m_s,ours_axial_rms_m_s,lab_radial_sd_m_s,"
@@ -478,9 +469,8 @@ void compare_fluctuations(Comparison& c) {
     }
     if (lab.axial_sd.empty()) continue;
     fmt::print(
-        "lab {}: the axial fluctuation's RMS difference downstream of the expansion {:.1f} % of "
-        "the throat's "
-        "mean velocity over {} stations\n",
+        "lab {}: the axial fluctuation's RMS difference downstream of the expansion {:.1f} % of the throat's mean "
+        "velocity over {} stations\n",
         lab.code, 100 * rms(sum2, n) / c.throat_mean, n);
     c.markdown += fmt::format(
         "\nLab {}: the axial fluctuation's RMS difference downstream of the expansion {:.1f} % of "
@@ -698,8 +688,7 @@ int run(int argc, char** argv) {
   Comparison c(argv[1], argv[2], argv[3]);  // the inputs read before anything is written
   std::filesystem::create_directories(c.out);
   fmt::print(
-      "result: {} ({}, {} points, {} tetrahedra); {} laboratories; flow {:g} mL/s, throat's mean "
-      "velocity "
+      "result: {} ({}, {} points, {} tetrahedra); {} laboratories; flow {:g} mL/s, throat's mean velocity "
       "{:.4f} m/s\n",
       argv[1],
       c.statistics ? fmt::format("the time means over t = {:g} to {:g} s", c.statistics->start,
