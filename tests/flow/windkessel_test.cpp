@@ -9,11 +9,18 @@
 namespace vesselmesh::flow {
 namespace {
 
+// A target of a mean inflow (mL/s) and its pressures (mmHg), the rest as the defaults.
+WindkesselTarget target_of(double inflow, double systolic, double diastolic) {
+  WindkesselTarget t;
+  t.inflow = inflow, t.systolic = systolic, t.diastolic = diastolic;
+  return t;
+}
+
 // Two outlets of radii 2 and 1 mm at 120/80 mmHg and 10 mL/s: flows 8 : 1 (Murray), the outlets in
 // parallel the mean pressure over the inflow, 9 % proximal, the compliance shared as the flow and
 // its time constant 1 s; n = 2 shares by area.
 TEST(Windkessel, MurraysLawSharesTheFlowAndTheParallelResistanceIsTheTarget) {
-  const WindkesselTarget target{.inflow = 10.0, .systolic = 120.0, .diastolic = 80.0};
+  const WindkesselTarget target = target_of(10.0, 120.0, 80.0);
   EXPECT_NEAR(mean_pressure(target), (80.0 + 40.0 / 3.0) * 133.322, 1e-9);
   const auto w = murray_windkessel({{"outlet_1", 2e-3}, {"outlet_2", 1e-3}}, target);
   ASSERT_EQ(w.size(), 2u);
@@ -43,7 +50,7 @@ TEST(Windkessel, MurraysLawSharesTheFlowAndTheParallelResistanceIsTheTarget) {
 
 TEST(Windkessel, ATargetOutOfRangeIsRefused) {
   const std::vector<std::pair<std::string, double>> one = {{"outlet_1", 1e-3}};
-  const WindkesselTarget good{.inflow = 5.0, .systolic = 120.0, .diastolic = 80.0};
+  const WindkesselTarget good = target_of(5.0, 120.0, 80.0);
   EXPECT_NO_THROW(murray_windkessel(one, good));
   WindkesselTarget t = good;
   t.inflow = 0.0;

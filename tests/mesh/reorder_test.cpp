@@ -81,8 +81,10 @@ TEST(CuthillMcKee, NarrowsTheBandOfAShuffledMeshAndKeepsEveryCell) {
     before.push_back(key(box, box.tets[c], box.tet_layer[c], box.tet_column[c]));
     after.push_back(key(r, r.tets[c], r.tet_layer[c], r.tet_column[c]));
     EXPECT_NEAR(tet_volume6(r, r.tets[c]), 1.0, 1e-12);
-    if (c > 0) EXPECT_LE(*std::min_element(r.tets[c - 1].begin(), r.tets[c - 1].end()),
-                         *std::min_element(r.tets[c].begin(), r.tets[c].end()));
+    if (c > 0) {
+      EXPECT_LE(*std::min_element(r.tets[c - 1].begin(), r.tets[c - 1].end()),
+                *std::min_element(r.tets[c].begin(), r.tets[c].end()));
+    }
   }
   std::sort(before.begin(), before.end());
   std::sort(after.begin(), after.end());

@@ -112,8 +112,9 @@ TEST(WallMetric, FirstLayerHeightsAreTheViscousLengthOfTheLargestShear) {
   const WallHeights given =
       first_layer_heights(tmp.folder().string(), {}, 1.0, {.density = 4000.0, .viscosity = 0.004});
   for (size_t v = 0; v < wall.points.size(); ++v)
-    if (wall.points[v].z() > 1.0)  // |WSS| = z^2: y = mu / sqrt(rho z^2)
+    if (wall.points[v].z() > 1.0) {  // |WSS| = z^2: y = mu / sqrt(rho z^2)
       EXPECT_NEAR(given.heights[v], 0.004 / std::sqrt(4000.0) / wall.points[v].z() / 1e-3, 1e-12);
+    }
   // A flow made before the summary named its fluid: the case file it names, where that still reads.
   test::write_bytes(tmp.path("case.toml"), "mesh = \"m.msh\"\n[fluid]\ndensity = 4000\nviscosity = 0.004\n"
                                            "[time]\nsteady = true\n[[boundary]]\ntag = \"wall\"\ntype = \"wall\"\n");

@@ -122,7 +122,9 @@ TEST(Envelope, LevelLayerStaysUnderTheFlowKindsThinnedLayers) {
     for (int v = 0; v < wall.num_points(); ++v) {
       for (const std::vector<double>& c : compared) EXPECT_LE(level[v], c[v] / scale * (1 + 1e-6)) << "scale " << scale;
       EXPECT_LE(level[v], plain[v] / scale * (1 + 1e-6));
-      if (wall.points[v].z() < 7.0) EXPECT_NEAR(level[v], 0.02 / scale, 0.02 * 0.02 / scale);
+      if (wall.points[v].z() < 7.0) {
+        EXPECT_NEAR(level[v], 0.02 / scale, 0.02 * 0.02 / scale);
+      }
     }
   }
 }
