@@ -219,10 +219,7 @@ struct Comparison {
   Vec3 fluctuation(double x, double y, double z) const {
     const std::optional<post::TetLocator::Hit> hit = locator.locate(Vec3(x, y, z));
     if (!hit || !statistics) return Vec3::Constant(std::nan(""));
-    Vec3 sum = Vec3::Zero();
-    for (int k = 0; k < 4; ++k)
-      sum += hit->weights[k] * statistics->rms[locator.tets()[hit->tet][k]];
-    return sum;
+    return locator.interpolate(*hit, statistics->rms);
   }
   // At signed radius r of station z: the mean over four directions (x, y, -x, -y), those inside.
   double axial_at_radius(double r, double z) const {

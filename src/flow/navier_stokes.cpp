@@ -4,6 +4,43 @@
 #include "flow/navier_stokes_impl.h"
 
 namespace vesselmesh::flow {
+namespace {
+
+// A velocity boundary's disturbance (flow/inflow_perturbation.h), its case's perturbation > 0:
+// eddies up to the end's radius (m) passing at the flow's mean magnitude over its period (the flow,
+// if constant) over the end's area; per face its points' indices in `nodes` (`at`: local point ->
+// index), for its net flow.
+void set_up_perturbation(Boundary& b, double radius, const std::map<int, int>& at, const Reporter& reporter) {
+  double mean_flow = 0.0;  // m3/s
+  const double period = b.condition.flow.period();
+  for (int i = 0; i < 256; ++i) mean_flow += std::abs(b.condition.flow(period * i / 256.0)) * 1e-6 / 256.0;
+  if (mean_flow > 0.0) b.perturbation.emplace(b.condition.perturbation, radius, mean_flow / b.area);
+  for (const BoundaryFace& f : b.faces) b.face_nodes.push_back({at.at(f.v[0]), at.at(f.v[1]), at.at(f.v[2])});
+  reporter.info(fmt::format("boundary {}: the inflow disturbed, each component's RMS {:g} % of the local speed, "
+                            "eddies of {:.3g} to {:.3g} mm at about {:.3g} m/s",
+                            b.condition.tag, 100.0 * b.condition.perturbation, 0.25e3 * radius, 1e3 * radius,
+                            mean_flow / b.area));
+}
+
+// Adds a velocity boundary's disturbance at `time` to its nodes' values (m/s; `points` the local
+// points, m): the local speed times the disturbance there, its net flow into the domain then removed
+// along the profile's shape (of unit flow). Collective: every process calls it for the boundary.
+void disturb(const Boundary& b, const std::vector<Vec3>& points, double time, std::vector<Vec3>& value) {
+  std::vector<Vec3> added(b.nodes.size(), Vec3::Zero());
+  for (size_t k = 0; k < b.nodes.size(); ++k)
+    if (b.shape[k] != 0.0)
+      added[k] = std::abs(value[k].dot(b.normal)) * (*b.perturbation)(points[b.nodes[k]] - b.center, time);
+  double inflow = 0.0;
+  for (size_t f = 0; f < b.faces.size(); ++f)
+    if (b.counted[f]) {
+      const std::array<int, 3>& v = b.face_nodes[f];
+      inflow -= b.faces[f].area / 3.0 * (added[v[0]] + added[v[1]] + added[v[2]]).dot(b.normal);
+    }
+  inflow = parallel::sum_all({inflow})[0];
+  for (size_t k = 0; k < b.nodes.size(); ++k) value[k] += added[k] + inflow * b.shape[k] * b.normal;
+}
+
+}  // namespace
 
 void NavierStokes::Impl::build(MeshPart part) {
   total_points = part.total_points;
@@ -203,17 +240,7 @@ void NavierStokes::Impl::build_boundaries(const MeshPart& part) {
       if (rho[k] >= 0.0)
         shape[k] = b.condition.profile == Profile::plug ? 1.0 : std::max(0.0, 1.0 - rho[k] * rho[k]);
     b.shape = unit_flux(shape);
-    if (b.condition.perturbation > 0.0) {
-      double mean_flow = 0.0;  // m3/s: the flow's mean magnitude over its period (the flow, if constant)
-      const double period = b.condition.flow.period();
-      for (int i = 0; i < 256; ++i) mean_flow += std::abs(b.condition.flow(period * i / 256.0)) * 1e-6 / 256.0;
-      if (mean_flow > 0.0) b.perturbation.emplace(b.condition.perturbation, radius, mean_flow / b.area);
-      for (const BoundaryFace& f : b.faces) b.face_nodes.push_back({at[f.v[0]], at[f.v[1]], at[f.v[2]]});
-      reporter->info(fmt::format("boundary {}: the inflow disturbed, each component's RMS {:g} % of the local speed, "
-                                 "eddies of {:.3g} to {:.3g} mm at about {:.3g} m/s",
-                                 b.condition.tag, 100.0 * b.condition.perturbation, 0.25e3 * radius, 1e3 * radius,
-                                 mean_flow / b.area));
-    }
+    if (b.condition.perturbation > 0.0) set_up_perturbation(b, radius, at, *reporter);
 
     if (b.condition.profile == Profile::womersley) {
       const Womersley w = Womersley::from_waveform(b.condition.flow, b.condition.harmonics, radius, nu);
@@ -258,33 +285,20 @@ void NavierStokes::Impl::set_dirichlet(double time) {
     std::vector<Complex> phase;
     for (size_t h = 0; h < b.harmonic_flow.size(); ++h)
       phase.push_back(b.harmonic_flow[h] * std::exp(Complex(0.0, static_cast<double>(h) * b.omega * time)));
-    std::vector<double> speed(b.nodes.size(), 0.0);  // wall points keep 0
+    std::vector<Vec3> value(b.nodes.size(), Vec3::Zero());  // m/s; wall points keep 0
     for (size_t k = 0; k < b.nodes.size(); ++k) {
       if (b.shape[k] == 0.0) continue;
-      speed[k] = q * b.shape[k];
+      double speed = q * b.shape[k];
       if (!phase.empty()) {
-        speed[k] = 0.0;
-        for (size_t h = 0; h < phase.size(); ++h) speed[k] += (phase[h] * b.harmonic_shape[h][k]).real();
+        speed = 0.0;
+        for (size_t h = 0; h < phase.size(); ++h) speed += (phase[h] * b.harmonic_shape[h][k]).real();
       }
+      value[k] = -speed * b.normal;
     }
-    std::vector<Vec3> added(b.nodes.size(), Vec3::Zero());  // the disturbance, m/s
-    if (b.perturbation) {
-      for (size_t k = 0; k < b.nodes.size(); ++k)
-        if (b.shape[k] != 0.0) added[k] = std::abs(speed[k]) * (*b.perturbation)(points[b.nodes[k]] - b.center, time);
-      double inflow = 0.0;  // its net flow into the domain, removed along the profile's shape (of unit flow)
-      for (size_t f = 0; f < b.faces.size(); ++f)
-        if (b.counted[f]) {
-          const std::array<int, 3>& v = b.face_nodes[f];
-          inflow -= b.faces[f].area / 3.0 * (added[v[0]] + added[v[1]] + added[v[2]]).dot(b.normal);
-        }
-      inflow = parallel::sum_all({inflow})[0];
-      for (size_t k = 0; k < b.nodes.size(); ++k) added[k] += inflow * b.shape[k] * b.normal;
-    }
-    for (size_t k = 0; k < b.nodes.size(); ++k) {
-      if (b.shape[k] == 0.0) continue;
-      const Vec3 value = added[k] - speed[k] * b.normal;
-      for (int i = 0; i < 3; ++i) dirichlet[kBlock * b.nodes[k] + i] = value[i];
-    }
+    if (b.perturbation) disturb(b, points, time, value);
+    for (size_t k = 0; k < b.nodes.size(); ++k)
+      if (b.shape[k] != 0.0)
+        for (int i = 0; i < 3; ++i) dirichlet[kBlock * b.nodes[k] + i] = value[k][i];
   }
 }
 

@@ -168,11 +168,8 @@ std::vector<FluidSample> sample_points(const FluidField& field, const TetLocator
     const std::optional<TetLocator::Hit> hit = locator.locate(points[i]);
     if (!hit) continue;
     s.inside = true;
-    const Tet& t = locator.tets()[hit->tet];
-    for (int k = 0; k < 4; ++k) {
-      s.velocity += hit->weights[k] * field.velocity[t[k]];
-      s.pressure += hit->weights[k] * field.pressure[t[k]];
-    }
+    s.velocity = locator.interpolate(*hit, field.velocity);
+    s.pressure = locator.interpolate(*hit, field.pressure);
   }
   return samples;
 }

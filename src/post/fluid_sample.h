@@ -28,6 +28,14 @@ class TetLocator {
   // on the boundary are found), the one of least index where several do; none outside.
   std::optional<Hit> locate(const Vec3& p) const;
   const std::vector<Tet>& tets() const { return tets_; }
+  // A field given per mesh point (velocity, pressure, the statistics' RMS...), linear at a hit.
+  template <typename T>
+  T interpolate(const Hit& hit, const std::vector<T>& values) const {
+    const Tet& t = tets_[hit.tet];
+    T sum = hit.weights[0] * values[t[0]];
+    for (int k = 1; k < 4; ++k) sum += hit.weights[k] * values[t[k]];
+    return sum;
+  }
 
  private:
   std::vector<Vec3> points_;

@@ -10,6 +10,8 @@
 #include <cstdlib>
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace vesselmesh::io {
 namespace {
@@ -19,6 +21,24 @@ void expect_fda_fluid(const ConformanceFile& file, double flow) {
   EXPECT_DOUBLE_EQ(file.flow, flow);
   EXPECT_DOUBLE_EQ(file.density, 1056.0);
   EXPECT_DOUBLE_EQ(file.viscosity, 0.0035);
+}
+
+// A section read as it should be: its keyword, parameters and rows (position, value) in order.
+void expect_section(const ConformanceSection& s, const std::string& keyword, const std::vector<double>& parameters,
+                    const std::vector<std::pair<double, double>>& rows) {
+  EXPECT_EQ(s.keyword, keyword);
+  ASSERT_EQ(s.parameters.size(), parameters.size()) << keyword;
+  for (size_t i = 0; i < parameters.size(); ++i) EXPECT_DOUBLE_EQ(s.parameters[i], parameters[i]) << keyword;
+  ASSERT_EQ(s.rows.size(), rows.size()) << keyword;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_DOUBLE_EQ(s.rows[i].first, rows[i].first) << keyword << " row " << i;
+    EXPECT_DOUBLE_EQ(s.rows[i].second, rows[i].second) << keyword << " row " << i;
+  }
+}
+
+// The one-line error reading `text` as a file gives (test::input_error).
+std::string read_error(const test::TemporaryFolder& folder, const std::string& text) {
+  return test::input_error(folder.path("bad.txt"), text, [](const std::string& f) { read_conformance(f); });
 }
 
 // A file as the FDA writes them: the header's fluid, a withdrawn section left out, a section
@@ -44,27 +64,16 @@ TEST(Conformance, ReadsTheHeadersFluidAndEveryPlotSection) {
                     "-1.0E-003  6.5E-001\n");
   const ConformanceFile file = read_conformance(path);
   expect_fda_fluid(file, 5.20624e-6);
-  ASSERT_EQ(file.sections.size(),
-            2u);  // the deleted- section's rows are not taken for sections either
-  EXPECT_EQ(file.sections[0].keyword, "plot-z-distribution-axial-velocity");
-  EXPECT_TRUE(file.sections[0].parameters.empty());
-  ASSERT_EQ(file.sections[0].rows.size(), 2u);
-  EXPECT_DOUBLE_EQ(file.sections[0].rows[0].first, 0.016);
-  EXPECT_DOUBLE_EQ(file.sections[0].rows[1].second, 0.087);
-  EXPECT_EQ(file.sections[1].keyword, "plot-profile-axial-velocity-at-z");
-  ASSERT_EQ(file.sections[1].parameters.size(), 2u);
-  EXPECT_DOUBLE_EQ(file.sections[1].parameters[0], -0.02);
-  ASSERT_EQ(file.sections[1].rows.size(), 1u);
-  EXPECT_DOUBLE_EQ(file.sections[1].rows[0].second, 0.65);
+  ASSERT_EQ(file.sections.size(), 2u);  // the deleted- section's rows are not taken for sections either
+  expect_section(file.sections[0], "plot-z-distribution-axial-velocity", {}, {{0.016, 0.7}, {-0.088, 0.087}});
+  expect_section(file.sections[1], "plot-profile-axial-velocity-at-z", {-0.02, 0.0}, {{-1e-3, 0.65}});
 }
 
 // What is wrong, where: a row that is not two numbers (its line), a missing count, a section cut
 // short, a file that is not there; another format gives no sections.
 TEST(Conformance, BadFilesSayWhereAndWhat) {
   test::TemporaryFolder folder;
-  const auto error = [&](const std::string& text) {
-    return test::input_error(folder.path("bad.txt"), text, [](const std::string& f) { read_conformance(f); });
-  };
+  const auto error = [&](const std::string& text) { return read_error(folder, text); };
   EXPECT_NE(error("plot-z-distribution-pressure\n2\n0.0 1.0\n0.1 x\n")
                 .find("bad.txt:4: row 2 of section "
                       "plot-z-distribution-pressure"),
@@ -94,21 +103,10 @@ TEST(Conformance, ReadsTheLdvFilesTabbedFormat) {
   const ConformanceFile file = read_conformance(path);
   expect_fda_fluid(file, 2.08e-5);
   ASSERT_EQ(file.sections.size(), 2u);
-  EXPECT_EQ(file.sections[0].keyword, "plot-profile-axial-velocity-at-z");
-  ASSERT_EQ(file.sections[0].parameters.size(), 1u);
-  EXPECT_DOUBLE_EQ(file.sections[0].parameters[0], -0.088);
-  ASSERT_EQ(file.sections[0].rows.size(), 2u);
-  EXPECT_DOUBLE_EQ(file.sections[0].rows[0].first, -6e-3);
-  EXPECT_DOUBLE_EQ(file.sections[0].rows[1].second, 0.36135);
-  EXPECT_EQ(file.sections[1].keyword, "plot-profile-axial-velocity-stdev-at-z");
-  EXPECT_DOUBLE_EQ(file.sections[1].parameters[0], 0.06);
-  ASSERT_EQ(file.sections[1].rows.size(), 1u);
-  EXPECT_DOUBLE_EQ(file.sections[1].rows[0].second, 0.5785);
+  expect_section(file.sections[0], "plot-profile-axial-velocity-at-z", {-0.088}, {{-6e-3, 0.0}, {1.99e-17, 0.36135}});
+  expect_section(file.sections[1], "plot-profile-axial-velocity-stdev-at-z", {0.06}, {{0.0, 0.5785}});
 
-  const auto error = [&](const std::string& text) {
-    return test::input_error(folder.path("bad.txt"), text,
-                             [](const std::string& f) { read_conformance(f); });
-  };
+  const auto error = [&](const std::string& text) { return read_error(folder, text); };
   EXPECT_NE(error("axial-velocity-at-z=\t0.0\t2\t0.0\t1.0\t0.001\r")
                 .find("the file ends where row 2 of section axial-velocity-at-z= at z = 0"),
             std::string::npos);
