@@ -6,8 +6,9 @@
 //   bench_fda_nozzle RESULT_DIR EXPERIMENT_DIR OUT_DIR
 //   bench_fda_nozzle --series FINE_OUT MEDIUM_OUT COARSE_OUT SERIES_OUT
 // RESULT_DIR: simulate's output folder (the last frame of fluid.pvd is compared; the one before,
-// when there is one, says how steady it was). EXPERIMENT_DIR: the unzipped `experiment/` folder
-// (*_<lab>.txt; z in m, flow along +z). Prints the tables and the summary; writes
+// when there is one, says how steady it was; a run with time statistics: their means, and the wall
+// shear stress's time mean over the same span, indices.vtp's mean_wss). EXPERIMENT_DIR: the
+// unzipped `experiment/` folder (*_<lab>.txt; z in m, flow along +z). Prints the tables and the summary; writes
 // OUT_DIR/comparison.json (the figures), centerline_velocity.csv, wall_pressure.csv,
 // velocity_profiles.csv, wall_shear_stress.csv and their charts (SVG and PNG; profile_z<Z> a
 // station's profiles). The mesh is in mm (as synth writes it). Pressures are compared as
@@ -22,8 +23,10 @@
 // SERIES_OUT/series_velocity.csv and .svg/.png.
 #include "io/atomic_file.h"
 #include "io/conformance.h"
+#include "io/vtk_formats.h"
 #include "mesh/error.h"
 #include "post/fluid_sample.h"
+#include "post/wall_series.h"
 #include "study/chart.h"
 #include "study/gci.h"
 #include "study/raster.h"
@@ -178,16 +181,45 @@ std::optional<post::FluidStatistics> statistics_of(const std::string& results) {
   return post::read_fluid_statistics(results);
 }
 
+// The wall's time-mean shear stress over the statistics' span (the indices' `mean_wss`, which a run with
+// statistics and no period takes over that span), else the wall's last frame (with a note why).
+struct OurWall {
+  post::WallField field;
+  bool time_mean = false;
+};
+OurWall wall_of(const std::string& results, bool with_statistics) {
+  post::WallField last = post::read_wall_frame(post::read_wall_series(results).frames.back());
+  if (!with_statistics) return {std::move(last)};
+  const nlohmann::json j = nlohmann::json::parse(io::read_file(results + "/summary.json"));
+  const nlohmann::json& stats = j["statistics"];
+  const double span = stats.value("end_s", 0.0) - stats.value("start_s", 0.0);
+  const double start = j.contains("indices") ? j["indices"].value("start_s", -1.0) : -1.0;
+  if (std::abs(start - stats.value("start_s", 0.0)) <= 0.05 * span) {
+    io::SurfaceData data = io::read_vtk_surface(results + "/" + j["indices"].value("file", std::string()),
+                                                io::VtkFormat::vtp);
+    if (const Field* mean = find_field(data.point_data, "mean_wss", 3, data.mesh.points.size())) {
+      post::WallField w;
+      w.wss = mean->vectors();
+      w.mesh = std::move(data.mesh);
+      return {std::move(w), true};
+    }
+  }
+  fmt::print("{}: no time-mean wall shear stress over the statistics' span (a run before it was written): the "
+             "wall's last frame is compared\n", results);
+  return {std::move(last)};
+}
+
 // What the comparisons share: the laboratories, our flow (the time means when the run kept its
-// statistics, else the last frame, and the one before when saved), the wall's last frame, and the
-// figures and tables gathered for comparison.json and comparison.md.
+// statistics, else the last frame, and the one before when saved), the wall (its time mean over the
+// statistics' span, else its last frame), and the figures and tables gathered for comparison.json and
+// comparison.md.
 struct Comparison {
   std::vector<Lab> labs;
   post::WallSeries series;
   std::optional<post::FluidStatistics> statistics;  // its mean moved into `field`
   post::FluidField field;
   post::TetLocator locator;
-  post::WallField wall;
+  OurWall wall;
   double throat_mean = 0.0;      // m/s: the flow rate over the throat's area, the RMS differences' scale
   std::string out;
   nlohmann::json summary;
@@ -200,13 +232,13 @@ struct Comparison {
         field(statistics ? std::move(statistics->mean)
                          : post::read_fluid_frame(series.frames.back())),
         locator(field.mesh),
-        wall(post::read_wall_frame(post::read_wall_series(results).frames.back())),
+        wall(wall_of(results, statistics.has_value())),
         throat_mean(labs[0].flow / (M_PI * 4e-6)),
         out(std::move(out_dir)) {
     if (series.length_unit != "mm")
       throw InputError(fmt::format("{}: the mesh is in {}, not mm", results, series.length_unit));
-    if (wall.wss.size() != wall.mesh.points.size() || wall.mesh.points.empty())
-      throw InputError(fmt::format("{}: the wall's last frame has no wall shear stress on its points", results));
+    if (wall.field.wss.size() != wall.field.mesh.points.size() || wall.field.mesh.points.empty())
+      throw InputError(fmt::format("{}: the wall has no wall shear stress on its points", results));
   }
 
   // Our axial velocity at (x, y, z), NaN outside the mesh.
@@ -249,10 +281,10 @@ struct Comparison {
     const double radius = station_radius(z);
     double sum = 0.0;
     int n = 0;
-    for (size_t v = 0; v < wall.mesh.points.size(); ++v) {
-      const Vec3& q = wall.mesh.points[v];
+    for (size_t v = 0; v < wall.field.mesh.points.size(); ++v) {
+      const Vec3& q = wall.field.mesh.points[v];
       if (std::abs(q.z() - z) <= window && std::abs(std::hypot(q.x(), q.y()) - radius) < 0.3)
-        sum += wall.wss[v].norm(), ++n;
+        sum += wall.field.wss[v].norm(), ++n;
     }
     return n ? sum / n : std::nan("");
   }
@@ -653,9 +685,9 @@ void compare_profiles(Comparison& c) {
 void compare_wall_shear(Comparison& c) {
   const std::vector<double> z_stations = stations(c.labs, &Lab::wss);
   if (z_stations.empty()) return fmt::print("\nwall shear stress: no laboratory measured it\n");
-  fmt::print(
-      "\nwall shear stress (Pa, magnitude; the labs' rows are walls: mean and range)\n{:>9} {:>9} {:>17} {:>9} {:>9}\n",
-      "z mm", "labs", "range", "ours", "diff");
+  const std::string ours_is = c.wall.time_mean ? "ours the time mean's" : "ours the last frame's";
+  fmt::print("\nwall shear stress (Pa, magnitude; the labs' rows are walls: mean and range; {})\n{:>9} {:>9} {:>17} "
+             "{:>9} {:>9}\n", ours_is, "z mm", "labs", "range", "ours", "diff");
   std::string csv = "z_mm,labs_mean_Pa,labs_min_Pa,labs_max_Pa,rows,ours_Pa\n";
   c.markdown +=
       "\n| wall shear stress, z (mm) | labs' mean [range] (Pa; each lab's walls) | ours | difference "
@@ -671,9 +703,13 @@ void compare_wall_shear(Comparison& c) {
     within += s.low <= ours && ours <= s.high;
   }
   fmt::print("wall shear stress: {} of {} stations within the rows' range\n", within, z_stations.size());
-  c.summary["wall_shear_stress"] = {{"stations", z_stations.size()}, {"within", within}};
+  c.summary["wall_shear_stress"] = {
+      {"stations", z_stations.size()}, {"within", within}, {"time_mean", c.wall.time_mean}};
   io::write_text(c.out + "/wall_shear_stress.csv", csv);
-  write_chart_along_z(c, "wall_shear_stress", "FDA nozzle: wall shear stress (magnitude)", "wall shear stress (Pa)",
+  write_chart_along_z(c, "wall_shear_stress",
+                      c.wall.time_mean ? "FDA nozzle: time-mean wall shear stress (magnitude)"
+                                       : "FDA nozzle: wall shear stress (magnitude)",
+                      "wall shear stress (Pa)",
                       &Lab::wss, {}, -100.0, 100.0, [&](double z) { return c.wall_shear(z); });
 }
 

@@ -19,6 +19,8 @@
 # them): what the transitional jet at RE=2000 is compared by (bench_fda_nozzle then compares the time means, the
 # jet's breakdown and the centreline's fluctuation with the LDV file's). PERTURBATION=I disturbs the inflow (each
 # velocity component's RMS I times the local speed; the laboratories' inlet pipe had about 0.03-0.04).
+# TAU_C=f and TAU_M_TIME=C_t set the stabilization's parameters (the case's [stabilization]: tau_C times f, tau_M's
+# time term C_t / dt^2; defaults 1 and 4): what docs/validation/fda_nozzle.md measured of them at Re 2000.
 # Re 2000 as docs/validation/fda_nozzle.md has it: RE=2000 STATS_FROM=0.1 PERTURBATION=0.04 bench/fda_nozzle.sh
 # build OUT 30 0.7 0.00085 0.5 (663k unknowns, a largest CFL number of 55: at 128, steps of 2 ms, the jet breaks
 # down falsely at 31 mm; about 35 minutes on one process): the breakdown at 74.0 mm, the labs' 57-76.
@@ -69,6 +71,9 @@ inlet_keys=""
 if [[ -n "${PERTURBATION:-}" ]]; then inlet_keys="perturbation = $PERTURBATION"; fi
 write_nozzle_case "$out/case.toml" "$time_section" "$flow" "$inlet_keys"
 if [[ -n "${STATS_FROM:-}" ]]; then printf '[output]\nstatistics_from = %s\n' "$STATS_FROM" >>"$out/case.toml"; fi
+if [[ -n "${TAU_C:-}${TAU_M_TIME:-}" ]]; then
+  printf '[stabilization]\ntau_c_factor = %s\ntau_m_time = %s\n' "${TAU_C:-1.0}" "${TAU_M_TIME:-4.0}" >>"$out/case.toml"
+fi
 run=("$vm" simulate "$out/case.toml" -o "$out/flow")
 if [[ -n "${NP:-}" ]]; then run=(mpirun --allow-run-as-root -np "$NP" "${run[@]}"); fi
 if [[ -x /usr/bin/time ]]; then run=(/usr/bin/time -f "simulate: %e s wall, %M KB peak" "${run[@]}"); fi

@@ -211,7 +211,7 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
   const io::TomlReader r{path};
   FlowCase c;
   c.path = path;
-  r.known_keys(root, "", {"mesh", "length_unit", "fluid", "time", "boundary", "solver", "output"});
+  r.known_keys(root, "", {"mesh", "length_unit", "fluid", "time", "boundary", "solver", "stabilization", "output"});
 
   const std::string mesh = r.text(root["mesh"], "mesh", "");
   if (mesh.empty()) r.fail("mesh", "missing: name the volume mesh (MSH 4.1 from `vesselmesh volume`)");
@@ -289,6 +289,16 @@ FlowCase parse_case(const std::string& text, const std::string& path) {
   c.reuse_preconditioner = r.flag(solver["reuse_preconditioner"], "solver.reuse_preconditioner", true);
   c.kept_solutions = r.integer(solver["kept_solutions"], "solver.kept_solutions", c.kept_solutions, 0);
   c.threads = r.integer(solver["threads"], "solver.threads", 0, 0);
+
+  const io::TomlView stabilization = root["stabilization"];
+  if (stabilization && !stabilization.is_table()) r.fail("stabilization", "expected a table [stabilization]");
+  if (stabilization) r.known_keys(*stabilization.as_table(), "stabilization", {"tau_c_factor", "tau_m_time"});
+  c.tau_c_factor = r.number(stabilization["tau_c_factor"], "stabilization.tau_c_factor", c.tau_c_factor, false);
+  if (!(c.tau_c_factor >= 0.0 && c.tau_c_factor <= 100.0))
+    r.fail("stabilization.tau_c_factor", "give a factor from 0 to 100 (1: tau_C as Bazilevs et al. 2007; 0: no LSIC)");
+  c.tau_m_time = r.number(stabilization["tau_m_time"], "stabilization.tau_m_time", c.tau_m_time, false);
+  if (!(c.tau_m_time >= 0.0 && c.tau_m_time <= 1e4))
+    r.fail("stabilization.tau_m_time", "give C_t from 0 to 1e4 (tau_M's time term C_t / dt^2; 4 by default)");
 
   const io::TomlView output = root["output"];
   if (output && !output.is_table()) r.fail("output", "expected a table [output]");

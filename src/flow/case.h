@@ -40,7 +40,11 @@
 // velocity and the pressure and the RMS of the velocity's fluctuation from T to the end, per point,
 // in statistics.vtu, flow/statistics.h; default none); [boundary] perturbation = I (velocity
 // boundaries of unsteady cases: a disturbance added to the profile, each component's RMS over time
-// I times the local speed, its net flow removed; flow/inflow_perturbation.h; default 0, none).
+// I times the local speed, its net flow removed; flow/inflow_perturbation.h; default 0, none);
+// [stabilization] tau_c_factor = f (tau_C times f: the LSIC term's weight; default 1, 0: none),
+// tau_m_time = C_t (tau_M's time term C_t / dt^2; default 4, Bazilevs et al. 2007; 0: tau_M as a steady
+// flow's): flow/stabilized_cell.h; for measuring what the stabilization does (issue 47), not for tuning a
+// study's flows.
 // A positive flow enters the domain, a negative one leaves it.
 #pragma once
 
@@ -118,6 +122,8 @@ struct FlowCase {
   double backflow = 1.0;
   std::vector<BoundaryCondition> boundaries;
   std::string petsc_options;
+  double tau_c_factor = 1.0;  // [stabilization]: tau_C times this (flow/stabilized_cell.h)
+  double tau_m_time = 4.0;    // [stabilization]: C_t, tau_M's time term C_t / dt^2
   bool reuse_preconditioner = true;  // [solver]: time steps keep the preconditioner while it serves
   int kept_solutions = 4;  // [solver]: time steps start from the last N solutions' best (LinearSolver::keep_solutions)
   int threads = 0;  // [solver]: the assembly's threads a process; 0: the cores on one process, 1 under MPI

@@ -237,7 +237,8 @@ void NavierStokes::Impl::assemble(const std::vector<Vec3>& advect, const std::ve
   // threads' split, chunk_cells): each row's in the cells' order, whatever the chunk.
   const int chunks = static_cast<int>(chunk_begin.size()) - 1;
   chunk_cfl.assign(static_cast<size_t>(chunks), 0.0);
-  const CellParameters parameters{.mass = m, .dt = dt, .viscosity = nu};
+  const CellParameters parameters{
+      .mass = m, .dt = dt, .viscosity = nu, .time_coefficient = fc.tau_m_time, .tau_c_factor = fc.tau_c_factor};
   // Lane l of `cells`'s systems (cell e): into the matrix and right-hand side, moving known
   // Dirichlet values to the right-hand side and giving known rows only their diagonal. (cfl: the
   // chunk's largest cell CFL number so far, a local of its thread's: written to chunk_cfl once

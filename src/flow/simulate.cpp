@@ -216,7 +216,11 @@ class Run {
         fc_(input_case),
         checkpoint_path_(output_dir + "/checkpoint.bin") {
     if (!extra_petsc_options.empty()) fc_.petsc_options += " " + extra_petsc_options;
-    window_start_ = fc_.period > 0.0 && fc_.period < fc_.end ? fc_.end - fc_.period : 0.0;
+    // The indices' window: the last period; without one, the time statistics' span (a transitional
+    // flow's mean wall shear stress beside its mean flow), else the whole run.
+    window_start_ = fc_.period > 0.0 && fc_.period < fc_.end ? fc_.end - fc_.period
+                    : fc_.statistics_from >= 0.0          ? fc_.statistics_from
+                                                          : 0.0;
   }
 
   void read_and_distribute();
@@ -270,8 +274,8 @@ class Run {
   // ends/TAG.csv's texts, grown a row a step from log.csv's (end_logs of its header and the new
   // line: one formatting for both), made whole from the log at a restart.
   std::map<std::string, std::string> end_texts_;
-  // Hemodynamic indices over the last period (the whole run without one), from every step, at
-  // the wall points this process writes.
+  // Hemodynamic indices over the last period (without one the statistics' span, else the whole run), from
+  // every step, at the wall points this process writes.
   post::WssIndexAccumulator indices_;
   double window_start_ = 0.0;
   FlowStatistics statistics_;  // [output] statistics_from: at this process's local points
@@ -462,7 +466,7 @@ void Run::write_summary() const {
     j["indices"] = {{"file", summary_.indices_file},
                     {"start_s", summary_.indices_start},
                     {"end_s", summary_.indices_end},
-                    {"units", {{"tawss", "Pa"}, {"osi", "1"}, {"rrt", "1/Pa"}, {"twssg", "Pa/s"}}}};
+                    {"units", {{"tawss", "Pa"}, {"osi", "1"}, {"rrt", "1/Pa"}, {"twssg", "Pa/s"}, {"mean_wss", "Pa"}}}};
   if (summary_.statistics_steps > 0)
     j["statistics"] = {{"file", summary_.statistics_file},
                        {"start_s", summary_.statistics_start},
@@ -522,13 +526,13 @@ void Run::write_indices() {
   const std::string file =
       write_result("indices", io::VtkFormat::vtp,
                    {Field::scalar("tawss", {}), Field::scalar("osi", {}), Field::scalar("rrt", {}),
-                    Field::scalar("twssg", {})},
+                    Field::scalar("twssg", {}), Field::vector("mean_wss", {})},
                    [&](const std::string& path) { post::write_indices(path, wall_.mesh, r); });
   summary_.indices_start = r.start;
   summary_.indices_end = r.end;
   summary_.indices_file = file;
   reporter_.info(fmt::format(
-      "{}: tawss (Pa), osi, rrt (1/Pa), twssg (Pa/s) over t = {:g} to {:g} s, {} samples", file,
+      "{}: tawss (Pa), osi, rrt (1/Pa), twssg (Pa/s), mean_wss (Pa) over t = {:g} to {:g} s, {} samples", file,
       r.start, r.end, r.samples));
 }
 
@@ -699,9 +703,9 @@ void Run::restore_checkpoint() {
       post::window_sums(sums, window_start_, c.flow.time, c.flow.time_step > 0.0 ? c.flow.time_step : fc_.dt);
   if (!moved)
     reporter_.warning(fmt::format(
-        "{}: the hemodynamic indices will cover t = {:g} to {:g} s, not the last period ({:g} to {:g} s): the run that "
-        "wrote the checkpoint began them at {:g} s, and its samples from {:g} to {:g} s are not kept apart; for the "
-        "last period, run the case again without --restart",
+        "{}: the hemodynamic indices will cover t = {:g} to {:g} s, not their window ({:g} to {:g} s: the last period "
+        "or the statistics' span): the run that wrote the checkpoint began them at {:g} s, and its samples from {:g} "
+        "to {:g} s are not kept apart; for that window, run the case again without --restart",
         checkpoint_path_, sums.start, fc_.end, window_start_, fc_.end, sums.start, window_start_, c.flow.time));
   indices_.restore(moved ? *moved : sums);
   write_series();  // the folder as it was at the checkpoint (later saves are written again)

@@ -17,7 +17,7 @@ __attribute__((target_clones("avx2", "default"))) void stabilized_cells(const Ce
                                                                         const CellParameters& parameters,
                                                                         CellSystems& out) {
   const double m = parameters.mass, dt = parameters.dt, nu = parameters.viscosity;
-  const double time_term = dt > 0.0 ? 4.0 / (dt * dt) : 0.0;
+  const double time_term = dt > 0.0 ? parameters.time_coefficient / (dt * dt) : 0.0;
   // The shape functions' gradients: the rows of the inverse Jacobian (mesh::barycentric_gradients).
   CellLanes d[3][3];
   for (int k = 0; k < 3; ++k)
@@ -64,7 +64,7 @@ __attribute__((target_clones("avx2", "default"))) void stabilized_cells(const Ce
   CellLanes tau_m = time_term + uGu + kCI * nu * nu * GG;
   lane_sqrt(tau_m);
   tau_m = 1.0 / tau_m;
-  const CellLanes tau_c = 1.0 / (tau_m * (G[0][0] + G[1][1] + G[2][2]));
+  const CellLanes tau_c = parameters.tau_c_factor / (tau_m * (G[0][0] + G[1][1] + G[2][2]));
   CellLanes c[4];
   for (int a = 0; a < 4; ++a) c[a] = ubar[0] * g[a][0] + ubar[1] * g[a][1] + ubar[2] * g[a][2];
 

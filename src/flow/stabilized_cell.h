@@ -9,8 +9,9 @@
 // Per cell, in SI: corners x_a, the advecting velocity u_a and the BDF history h_a at them
 // (m/s2: the previous steps' velocities over dt, weighted); its volume V, the shape functions'
 // gradients g_a, ubar and hbar the corners' means, the metric G = sum_a g_a g_a^T,
-// tau_M = (4/dt^2 + ubar.G.ubar + C_I nu^2 G:G)^(-1/2) (C_I = 36; no 4/dt^2 when dt is 0) and
-// tau_C = 1 / (tau_M tr G); c_a = ubar . g_a. The system in Picard's (Oseen's) form, mass
+// tau_M = (C_t/dt^2 + ubar.G.ubar + C_I nu^2 G:G)^(-1/2) (C_I = 36; C_t = 4 by default; no time term
+// when dt is 0) and tau_C = f_C / (tau_M tr G) (f_C = 1 by default; CellParameters); c_a = ubar . g_a.
+// The system in Picard's (Oseen's) form, mass
 // coefficient m (alpha0 / dt, 0 for a steady or Stokes system), rows a's momentum (i < 3) and
 // continuity (3), columns b's velocity (j < 3) and pressure (3):
 //   block(a, b)[i][j] = tau_C V g_a[i] g_b[j] + delta_ij (m M_ab + V/4 c_b + nu V g_a.g_b
@@ -40,8 +41,10 @@ struct CellCorners {
 
 struct CellParameters {
   double mass = 0.0;       // m, 1/s
-  double dt = 0.0;         // s; 0: no 4/dt^2 in tau_M, no CFL number
+  double dt = 0.0;         // s; 0: no time term in tau_M, no CFL number
   double viscosity = 0.0;  // kinematic, m2/s
+  double time_coefficient = 4.0;  // C_t: tau_M's time term C_t / dt^2 (FlowCase::tau_m_time)
+  double tau_c_factor = 1.0;      // tau_C times this (FlowCase::tau_c_factor)
 };
 
 struct CellSystems {

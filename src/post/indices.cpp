@@ -50,7 +50,9 @@ WssIndices WssIndexAccumulator::result() const {
   r.osi.resize(n);
   r.rrt.resize(n);
   r.twssg.resize(n);
+  r.mean.resize(n);
   for (size_t i = 0; i < n; ++i) {
+    r.mean[i] = integral_[i] / span;
     const double mean_vector = integral_[i].norm();
     r.tawss[i] = magnitude_integral_[i] / span;
     r.osi[i] = magnitude_integral_[i] > 0.0
@@ -68,7 +70,8 @@ WssIndices WssIndexAccumulator::result() const {
 void write_indices(const std::string& path, const TriMesh& wall, const WssIndices& indices) {
   io::write_vtp(path, wall,
                 {Field::scalar("tawss", indices.tawss), Field::scalar("osi", indices.osi),
-                 Field::scalar("rrt", indices.rrt), Field::scalar("twssg", indices.twssg)});
+                 Field::scalar("rrt", indices.rrt), Field::scalar("twssg", indices.twssg),
+                 Field::vector("mean_wss", indices.mean)});
 }
 
 std::optional<WssIndexAccumulator::State> window_sums(const WssIndexAccumulator::State& saved, double window_start,

@@ -4,6 +4,7 @@
 //   OSI   = 1/2 (1 - |int tau dt| / int |tau| dt)       (-, 0 to 1/2)
 //   RRT   = 1 / ((1 - 2 OSI) TAWSS) = T / |int tau dt|  (1/Pa)
 //   TWSSG = 1/T int |d tau / dt| dt                     (Pa/s)
+// and the time-mean vector 1/T int tau dt (Pa; `mean_wss`, what a measured mean flow's shear is).
 // The integrals are by the trapezoidal rule over the samples given (every time step when the
 // solver accumulates, the saved frames when `vesselmesh wss` does); d tau/dt is the difference
 // of successive samples. Where tau is zero throughout, OSI is 0 and RRT is NaN (no residence
@@ -22,6 +23,7 @@ struct WssIndices {
   double start = 0.0, end = 0.0;  // s
   int samples = 0;
   std::vector<double> tawss, osi, rrt, twssg;
+  std::vector<Vec3> mean;  // the time-mean wall shear stress 1/T int tau dt (Pa): the written `mean_wss`
 };
 
 class WssIndexAccumulator {

@@ -1,5 +1,5 @@
 // The command-line tests of the flow: simulate (the example case, a stop and restart, under
-// mpirun, Windkessel outlets, steady Newton), sample and wss on its results.
+// mpirun, Windkessel outlets, steady Newton), adapt; sample and wss: cli_post_test.cpp.
 #include "flow/case.h"
 #include "io/stl.h"
 #include "io/surface.h"
@@ -33,43 +33,6 @@ namespace {
 
 // The pulsatile example case, run for three steps on a small pipe: every output written and
 // named in the collections; a case naming a tag the mesh lacks stops before any work.
-// examples/pipe_pulsatile.toml for a small pipe meshed in a test's folder: the mesh `mesh_file`
-// (written there by `volume` with `volume_options`), run to `end` s, the waveform found.
-// The largest |a - b| over the largest |a| (arrays of the same size, not empty).
-double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
-  EXPECT_EQ(a.size(), b.size());
-  EXPECT_FALSE(a.empty());
-  double largest = 0.0, difference = 0.0;
-  for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
-    largest = std::max(largest, std::abs(a[i]));
-    difference = std::max(difference, std::abs(a[i] - b[i]));
-  }
-  return largest > 0.0 ? difference / largest : difference;
-}
-
-struct ExampleCase {
-  std::string text;
-
-  ExampleCase(const test::TemporaryFolder& tmp, const std::string& mesh_file, std::vector<std::string> volume_options,
-              const std::string& end) {
-    EXPECT_EQ(run({"synth", "cylinder", "--radius", "2", "--length", "8", "--resolution", "0.5", "-o",
-                   tmp.path("p.stl")}).code, 0);
-    std::vector<std::string> volume = {"volume", tmp.path("p.stl"), "-o", tmp.path(mesh_file), "-q"};
-    volume.insert(volume.end(), volume_options.begin(), volume_options.end());
-    EXPECT_EQ(run(volume).code, 0);
-    text = read_text(std::string(VESSELMESH_EXAMPLES_DIR) + "/pipe_pulsatile.toml");
-    replace("../build/pipe.msh", mesh_file);
-    replace("cycles = 2", "end = " + end);
-    replace("period = 0.8", "");
-    replace("waveform = \"pulse.csv\"", "waveform = \"" + std::string(VESSELMESH_EXAMPLES_DIR) + "/pulse.csv\"");
-  }
-  void replace(const std::string& from, const std::string& to) {
-    const size_t at = text.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    text.replace(at, from.size(), to);
-  }
-};
-
 TEST(Cli, SimulateRunsTheExampleCase) {
   test::TemporaryFolder tmp;
   // As VTU with the layer's prisms kept: the solver cuts them itself.
@@ -269,6 +232,24 @@ TEST(Cli, StatisticsAreTheMeanAndSpreadOfTheSteps) {
   for (size_t k : {5u, 6u, 7u, 9u})  // the velocity's components, the pressure
     EXPECT_NEAR(at_mean[k], frames_mean[k], 1e-8 * (1.0 + std::abs(frames_mean[k]))) << k;  // the CSV's 9 digits
   EXPECT_GT(at_mean[12], 0.0);  // the axial velocity's fluctuation as the flow speeds up
+  // Without a period the hemodynamic indices cover the statistics' span, and their mean_wss is the wall
+  // shear stress's time mean there: the trapezoidal rule over the frames at t = 0.02 .. 0.04 s (frames 3-7).
+  const Json indices = Json::parse(read_text(tmp.path("run/summary.json")))["indices"];
+  EXPECT_NEAR(indices["start_s"].get<double>(), 0.02, 1e-12);
+  EXPECT_EQ(indices["units"]["mean_wss"], "Pa");
+  const auto wall_field = [&](const std::string& file, const std::string& name) {
+    const io::SurfaceData wall = io::read_vtk_surface(tmp.path("run/" + file), io::VtkFormat::vtp);
+    const Field* f = find_field(wall.point_data, name, 3, wall.mesh.points.size());
+    return f ? f->values : std::vector<double>{};
+  };
+  std::vector<double> wall_mean(wall_field("wall_000003.vtp", "wss").size(), 0.0);
+  for (int frame = 3; frame <= 7; ++frame) {
+    const std::vector<double> w = wall_field(fmt::format("wall_{:06d}.vtp", frame), "wss");
+    ASSERT_EQ(w.size(), wall_mean.size());
+    for (size_t i = 0; i < w.size(); ++i) wall_mean[i] += w[i] * (frame == 3 || frame == 7 ? 0.125 : 0.25);
+  }
+  ASSERT_FALSE(wall_mean.empty());
+  EXPECT_LT(relative_difference(wall_field("indices.vtp", "mean_wss"), wall_mean), 1e-9);
   // A run that ends before statistics_from: a warning, no statistics; sampling them: one line, exit 2.
   const RunResult early = run({"simulate", tmp.path("case.toml"), "-o", tmp.path("early"), "--end", "0.015"});
   ASSERT_EQ(early.code, 0) << early.err;
@@ -380,8 +361,8 @@ TEST(Cli, SimulateUnderMpirunMatchesOneProcess) {
     };
     for (const auto& [file, name] : std::vector<std::pair<std::string, std::string>>{
              {"fluid_000000.vtu", "velocity"}, {"fluid_000000.vtu", "pressure"}, {"wall_000000.vtp", "wss"},
-             {"indices.vtp", "tawss"}, {"statistics.vtu", "mean_velocity"}, {"statistics.vtu", "rms_velocity"},
-             {"statistics.vtu", "mean_pressure"}})
+             {"indices.vtp", "tawss"}, {"indices.vtp", "mean_wss"}, {"statistics.vtu", "mean_velocity"},
+             {"statistics.vtu", "rms_velocity"}, {"statistics.vtu", "mean_pressure"}})
       EXPECT_LT(relative_difference(point_data("one", file, name), point_data(folder, joined(file), name)), 1e-6)
           << file << " " << name;
     // The flow-adapted interior's sizes (issue 52) read from the pieces: the one process's, point by point.
@@ -764,134 +745,6 @@ TEST(Cli, AdaptRefusesBadInputInOneLine) {
           "--layer-y-plus -1: give a y+ >= 0");
   refused({tmp.path("pipe.stl"), tmp.path("none.toml"), "--target-triangles", "2000"}, "none.toml");
   refused({tmp.path("ball.stl"), tmp.path("case.toml"), "--target-triangles", "2000"}, "no open or flat-capped end");
-}
-
-// `extend` (issue 32): two of a Y's three ends by name and index, five radii each along their
-// normals; `info` finds three ends, the two moved; the moved centres name the ends for `volume`;
-// an unknown end or mode is a one-line error, exit 2.
-TEST(Cli, SampleReadsTheFlowAlongALineAndAtPoints) {
-  test::TemporaryFolder tmp;
-  ASSERT_EQ(run({"synth", "cylinder", "--radius", "2", "--length", "8", "--resolution", "0.4", "-o", tmp.path("p.stl"),
-                 "-q"}).code, 0);
-  ASSERT_EQ(run({"volume", tmp.path("p.stl"), "-o", tmp.path("pipe.msh"), "-q"}).code, 0);
-  // examples/pipe_steady.toml: 1 mL/s of Poiseuille flow.
-  std::string text = read_text(std::string(VESSELMESH_EXAMPLES_DIR) + "/pipe_steady.toml");
-  const std::string mesh_path = "../build/pipe.msh";
-  ASSERT_NE(text.find(mesh_path), std::string::npos);
-  text.replace(text.find(mesh_path), mesh_path.size(), "pipe.msh");
-  test::write_bytes(tmp.path("case.toml"), text);
-  ASSERT_EQ(run({"simulate", tmp.path("case.toml"), "-o", tmp.path("out"), "-q"}).code, 0);
-  const RunResult r = run({"sample", tmp.path("out"), "--line", "0,0,-1:0,0,9", "--samples", "11", "--point",
-                           "middle:0,0,4", "-o", tmp.path("axis.csv"), "--json"});
-  ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(r.json()["outside"].get<int>(), 2);  // z = -1 and z = 9
-  EXPECT_NE(r.err.find("2 of 12 sample(s) lie outside the mesh"), std::string::npos) << r.err;
-  const double centre = 2.0 * 1e-6 / (std::numbers::pi * 4e-6);  // m/s: twice the mean, Q / (pi R^2)
-  EXPECT_NEAR(r.json()["points"][0]["velocity"][2].get<double>(), centre, 0.03 * centre);
-  std::istringstream csv(read_text(tmp.path("axis.csv")));
-  std::string line;
-  std::getline(csv, line);
-  EXPECT_NE(line.find("lengths in mm, velocity in m/s, pressure in Pa"), std::string::npos) << line;
-  std::getline(csv, line);
-  EXPECT_EQ(line.rfind("name,distance_mm,x_mm,y_mm,z_mm,inside,velocity_x_m_s", 0), 0u) << line;
-  std::vector<double> pressure;
-  int rows = 0;
-  while (std::getline(csv, line)) {
-    ++rows;
-    std::vector<std::string> cells;
-    std::istringstream fields(line);
-    for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
-    if (!line.empty() && line.back() == ',') cells.push_back("");
-    ASSERT_EQ(cells.size(), 11u) << line;
-    if (cells[0] != "line" || cells[5] == "0") continue;
-    const double z = std::stod(cells[4]);
-    if (z > 1.0 && z < 7.0) {
-      EXPECT_NEAR(std::stod(cells[8]), centre, 0.03 * centre) << line;
-    }
-    pressure.push_back(std::stod(cells[10]));
-  }
-  EXPECT_EQ(rows, 12);
-  ASSERT_EQ(pressure.size(), 9u);
-  for (size_t i = 1; i < pressure.size(); ++i) EXPECT_LT(pressure[i], pressure[i - 1]);  // falls along the flow
-  const RunResult late = run({"sample", tmp.path("out"), "--point", "a:0,0,4", "--time", "2", "-o", tmp.path("x.csv")});
-  EXPECT_EQ(late.code, 2);
-  EXPECT_NE(last_line(late.err).find("outside the saved results"), std::string::npos) << late.err;
-  EXPECT_EQ(run({"sample", tmp.path("out"), "-o", tmp.path("x.csv")}).code, 2);  // nothing to sample
-}
-
-// Issue 9: rings, points, a time between saved frames and the indices from a simulation's output.
-TEST(Cli, WssReadsRingsPointsAndIndicesFromResults) {
-  test::TemporaryFolder tmp;
-  ExampleCase example(tmp, "pipe.msh", {}, "0.02");
-  example.replace("save_every = 10", "save_every = 1");
-  test::write_bytes(tmp.path("case.toml"), example.text);
-  ASSERT_EQ(run({"simulate", tmp.path("case.toml"), "-o", tmp.path("out"), "-q"}).code, 0);
-  // simulate wrote the indices over the whole run (the case gives no period).
-  ASSERT_TRUE(std::filesystem::exists(tmp.path("out/indices.vtp")));
-  const io::SurfaceData indices = io::read_vtk_surface(tmp.path("out/indices.vtp"), io::VtkFormat::vtp);
-  std::vector<std::string> names;
-  for (const Field& f : indices.point_data) names.push_back(f.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"tawss", "osi", "rrt", "twssg"}));
-  const Json summary = Json::parse(read_text(tmp.path("out/summary.json")));
-  EXPECT_EQ(summary["indices"]["units"]["tawss"], "Pa");
-  EXPECT_NEAR(summary["indices"]["end_s"].get<double>(), 0.02, 1e-9);
-
-  const RunResult r = run({"wss", tmp.path("out"), "-o", tmp.path("wss"), "--time", "0.0125", "--ring",
-                           "mid:0,0,4:0,0,1", "--ring", "onaxis:0.3,0.1,5", "--point", "A:2.5,0,3", "--indices",
-                           "0:1", "--json"});
-  ASSERT_EQ(r.code, 0) << r.err;
-  const Json j = r.json();
-  EXPECT_DOUBLE_EQ(j["time_s"].get<double>(), 0.0125);
-  ASSERT_EQ(j["rings"].size(), 2u);
-  for (const Json& ring : j["rings"]) {
-    EXPECT_TRUE(ring["closed"].get<bool>());
-    EXPECT_NEAR(ring["length"].get<double>(), 2 * 3.14159265 * 2.0, 0.03 * 2 * 3.14159265 * 2.0) << ring["name"];
-    const double least = ring["minimum"]["wss_magnitude"].get<double>();
-    EXPECT_GT(least, 0.0);
-    EXPECT_LE(least, ring["mean_wss_magnitude"].get<double>());
-  }
-  // The centerline ring is normal to the pipe's axis.
-  EXPECT_NEAR(std::abs(j["rings"][1]["normal"][2].get<double>()), 1.0, 1e-3);
-  EXPECT_NEAR(j["rings"][1]["centroid"][2].get<double>(), 5.0, 0.1);
-  ASSERT_EQ(j["points"].size(), 1u);
-  EXPECT_NEAR(j["points"][0]["distance"].get<double>(), 0.5, 0.05);
-  EXPECT_EQ(j["indices"]["frames"].get<int>(), 4);  // steps 1 to 4
-  for (const char* file : {"wall_at_time.vtp", "rings.vtp", "ring_mid.csv", "ring_mid.svg", "ring_mid.png",
-                           "ring_mid_angle.svg", "ring_mid_angle.png", "ring_onaxis.csv", "points.csv", "indices.vtp",
-                           "wss.json"})
-    EXPECT_TRUE(std::filesystem::exists(tmp.path(std::string("wss/") + file))) << file;
-  const std::string csv = read_text(tmp.path("wss/ring_mid.csv"));
-  EXPECT_EQ(static_cast<size_t>(std::count(csv.begin(), csv.end(), '\n')), j["rings"][0]["samples"].get<size_t>() + 2);
-  EXPECT_NE(csv.find("arc_length_mm,angle_deg"), std::string::npos);
-
-  // Between frames 2 (t = 0.01) and 3 (t = 0.015): the mean of the two.
-  const auto wss = [&](const std::string& file) {
-    for (const Field& f : io::read_vtk_surface(file, io::VtkFormat::vtp).point_data)
-      if (f.name == "wss") return f.values;
-    return std::vector<double>{};
-  };
-  const std::vector<double> a = wss(tmp.path("out/wall_000001.vtp")), b = wss(tmp.path("out/wall_000002.vtp")),
-                            mid = wss(tmp.path("wss/wall_at_time.vtp"));
-  ASSERT_EQ(mid.size(), a.size());
-  ASSERT_FALSE(mid.empty());
-  for (size_t i = 0; i < mid.size(); i += 97) EXPECT_NEAR(mid[i], 0.5 * (a[i] + b[i]), 1e-12 + 1e-9 * std::abs(a[i]));
-
-  // Bad requests: exit 2, what is wrong said, nothing written.
-  const RunResult late = run({"wss", tmp.path("out"), "-o", tmp.path("late"), "--time", "9"});
-  EXPECT_EQ(late.code, 2);
-  EXPECT_NE(late.err.find("outside the saved results"), std::string::npos) << late.err;
-  EXPECT_FALSE(std::filesystem::exists(tmp.path("late")));
-  const RunResult bad = run({"wss", tmp.path("out"), "-o", tmp.path("bad"), "--ring", "mid:0,0"});
-  EXPECT_EQ(bad.code, 2);
-  EXPECT_NE(bad.err.find("is not a point"), std::string::npos) << bad.err;
-  EXPECT_FALSE(std::filesystem::exists(tmp.path("bad")));
-  const RunResult miss = run({"wss", tmp.path("out"), "-o", tmp.path("miss"), "--ring", "far:0,0,50:0,0,1"});
-  EXPECT_EQ(miss.code, 2);
-  EXPECT_NE(last_line(miss.err).find("ring far"), std::string::npos) << miss.err;
-  EXPECT_FALSE(std::filesystem::exists(tmp.path("miss")));  // nothing written, not even the wall
-  const RunResult window = run({"wss", tmp.path("out"), "-o", tmp.path("window"), "--indices", "0:1x"});
-  EXPECT_EQ(window.code, 2);
-  EXPECT_FALSE(std::filesystem::exists(tmp.path("window")));
 }
 
 }  // namespace

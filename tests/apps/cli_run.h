@@ -1,5 +1,6 @@
 // Running the program as a user does, for the command-line tests (tests/apps/*_test.cpp): its
-// exit code, standard output and error; the last line of the error (the message); a file's text.
+// exit code, standard output and error; the last line of the error (the message); a file's text;
+// the flow tests' example case and their arrays' relative difference.
 #pragma once
 
 #include "test_support.h"
@@ -7,6 +8,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -79,5 +82,42 @@ inline std::string read_text(const std::string& path) {
   ss << in.rdbuf();
   return ss.str();
 }
+
+// The largest |a - b| over the largest |a| (arrays of the same size, not empty).
+inline double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  EXPECT_EQ(a.size(), b.size());
+  EXPECT_FALSE(a.empty());
+  double largest = 0.0, difference = 0.0;
+  for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+    largest = std::max(largest, std::abs(a[i]));
+    difference = std::max(difference, std::abs(a[i] - b[i]));
+  }
+  return largest > 0.0 ? difference / largest : difference;
+}
+
+// examples/pipe_pulsatile.toml for a small pipe meshed in a test's folder: the mesh `mesh_file`
+// (written there by `volume` with `volume_options`), run to `end` s, the waveform found.
+struct ExampleCase {
+  std::string text;
+
+  ExampleCase(const test::TemporaryFolder& tmp, const std::string& mesh_file, std::vector<std::string> volume_options,
+              const std::string& end) {
+    EXPECT_EQ(run({"synth", "cylinder", "--radius", "2", "--length", "8", "--resolution", "0.5", "-o",
+                   tmp.path("p.stl")}).code, 0);
+    std::vector<std::string> volume = {"volume", tmp.path("p.stl"), "-o", tmp.path(mesh_file), "-q"};
+    volume.insert(volume.end(), volume_options.begin(), volume_options.end());
+    EXPECT_EQ(run(volume).code, 0);
+    text = read_text(std::string(VESSELMESH_EXAMPLES_DIR) + "/pipe_pulsatile.toml");
+    replace("../build/pipe.msh", mesh_file);
+    replace("cycles = 2", "end = " + end);
+    replace("period = 0.8", "");
+    replace("waveform = \"pulse.csv\"", "waveform = \"" + std::string(VESSELMESH_EXAMPLES_DIR) + "/pulse.csv\"");
+  }
+  void replace(const std::string& from, const std::string& to) {
+    const size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  }
+};
 
 }  // namespace vesselmesh

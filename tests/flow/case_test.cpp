@@ -249,6 +249,20 @@ TEST(FlowCase, PerturbationOfAnInflow) {
                "a steady case has no fluctuation in time");
 }
 
+TEST(FlowCase, StabilizationFactors) {
+  const FlowCase plain = parse_case(kContract, "case.toml");
+  EXPECT_EQ(plain.tau_c_factor, 1.0);  // Bazilevs et al.'s tau_C and tau_M unless asked
+  EXPECT_EQ(plain.tau_m_time, 4.0);
+  const FlowCase c =
+      parse_case(kContract + std::string("[stabilization]\ntau_c_factor = 0.25\ntau_m_time = 0\n"), "case.toml");
+  EXPECT_DOUBLE_EQ(c.tau_c_factor, 0.25);
+  EXPECT_DOUBLE_EQ(c.tau_m_time, 0.0);
+  expect_error(kContract + std::string("[stabilization]\ntau_c_factor = -1\n"), "stabilization.tau_c_factor");
+  expect_error(kContract + std::string("[stabilization]\ntau_m_time = -4\n"), "stabilization.tau_m_time");
+  expect_error(kContract + std::string("[stabilization]\ntau_c = 1\n"), "tau_c");
+  expect_error(std::string("stabilization = 1\n") + kContract, "expected a table [stabilization]");
+}
+
 TEST(FlowCase, StatisticsFromATimeBeforeTheEnd) {
   EXPECT_LT(parse_case(kContract, "case.toml").statistics_from, 0.0);  // none unless asked
   const auto from = [](const std::string& value) {

@@ -575,8 +575,8 @@ TEST(Simulate, ARestartThatExtendsTheRunTakesTheIndicesOverTheNewLastPeriod) {
   const SimulationSummary c = simulate(whole, dir, "", warnings, /*restart=*/true);
   EXPECT_NEAR(c.indices_start, 0.020, 1e-9);
   EXPECT_NEAR(c.indices_end, 0.032, 1e-9);
-  EXPECT_NE(warnings.text.find("the hemodynamic indices will cover t = 0.02 to 0.032 s, not the last period (0.024 "
-                               "to 0.032 s)"),
+  EXPECT_NE(warnings.text.find("the hemodynamic indices will cover t = 0.02 to 0.032 s, not their window (0.024 "
+                               "to 0.032 s: the last period"),
             std::string::npos)
       << warnings.text;
 }

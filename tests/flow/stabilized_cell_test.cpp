@@ -62,28 +62,40 @@ TEST(StabilizedCell, VolumeAndGradientsAreTheMeshsOwn) {
   }
 }
 
+// Cell l's metric G = sum_a g_a g_a^T, mean velocity ubar and largest |g_a|, worked out with Eigen.
+struct CellMetric {
+  Eigen::Matrix3d G = Eigen::Matrix3d::Zero();
+  Vec3 ubar = Vec3::Zero();
+  double largest = 0.0;
+  // (C_t / dt^2 + ubar.G.ubar + 36 nu^2 G:G)^(-1/2), at kParameters' dt and viscosity.
+  double tau_m(double time_coefficient) const {
+    const double dt = kParameters.dt, nu = kParameters.viscosity;
+    return 1.0 / std::sqrt(time_coefficient / (dt * dt) + ubar.dot(G * ubar) + 36.0 * nu * nu * G.squaredNorm());
+  }
+};
+CellMetric metric_of(int l) {
+  double volume = 0.0;
+  const std::array<Vec3, 4> g = gradients_of(l, volume);
+  CellMetric m;
+  for (int a = 0; a < 4; ++a) {
+    m.G += g[a] * g[a].transpose();
+    m.ubar += velocity(kCells[l][a]) / 4.0;
+    m.largest = std::max(m.largest, g[a].norm());
+  }
+  return m;
+}
+
 // tau_M = (4/dt^2 + ubar.G.ubar + 36 nu^2 G:G)^(-1/2), tau_C = 1 / (tau_M tr G), the CFL number
 // |ubar| dt max_a |g_a|, each against its definition worked out with Eigen (1e-14 relative).
 TEST(StabilizedCell, StabilizationParametersFollowTheirDefinitions) {
   CellSystems s;
   stabilized_cells(corners_of({0, 1, 2, 3}), kParameters, s);
   for (int l = 0; l < kCellLanes; ++l) {
-    const Corners& x = kCells[l];
-    double volume = 0.0;
-    const std::array<Vec3, 4> g = gradients_of(l, volume);
-    Eigen::Matrix3d G = Eigen::Matrix3d::Zero();
-    Vec3 ubar = Vec3::Zero();
-    double largest = 0.0;
-    for (int a = 0; a < 4; ++a) {
-      G += g[a] * g[a].transpose();
-      ubar += velocity(x[a]) / 4.0;
-      largest = std::max(largest, g[a].norm());
-    }
-    const double dt = kParameters.dt, nu = kParameters.viscosity;
-    const double tau_m = 1.0 / std::sqrt(4.0 / (dt * dt) + ubar.dot(G * ubar) + 36.0 * nu * nu * G.squaredNorm());
+    const CellMetric m = metric_of(l);
+    const double dt = kParameters.dt, tau_m = m.tau_m(4.0), trace = m.G.trace(), speed = m.ubar.norm();
     EXPECT_NEAR(s.tau_m[l], tau_m, 1e-14 * tau_m) << l;
-    EXPECT_NEAR(s.tau_c[l], 1.0 / (tau_m * G.trace()), 1e-14 / (tau_m * G.trace())) << l;
-    EXPECT_NEAR(s.cfl[l], ubar.norm() * dt * largest, 1e-14 * ubar.norm() * dt * largest) << l;
+    EXPECT_NEAR(s.tau_c[l], 1.0 / (tau_m * trace), 1e-14 / (tau_m * trace)) << l;
+    EXPECT_NEAR(s.cfl[l], speed * dt * m.largest, 1e-14 * speed * dt * m.largest) << l;
     EXPECT_LT(s.tau_m[l], dt / 2.0);  // the time step bounds it
   }
   CellSystems steady;  // dt 0: no time term, no CFL number
@@ -91,6 +103,34 @@ TEST(StabilizedCell, StabilizationParametersFollowTheirDefinitions) {
   for (int l = 0; l < kCellLanes; ++l) {
     EXPECT_GT(steady.tau_m[l], s.tau_m[l]);
     EXPECT_EQ(steady.cfl[l], 0.0);
+  }
+}
+
+// The case's factors (FlowCase::tau_c_factor, tau_m_time): tau_M's time term C_t / dt^2 and tau_C times
+// f_C, against the same definitions (1e-14); C_t = 0 is the steady flow's tau_M, and the Schur
+// complement's preconditioning weight sees the smaller tau_C.
+TEST(StabilizedCell, TheCasesFactorsScaleTauCAndTauMsTimeTerm) {
+  CellSystems base, scaled, steady;
+  stabilized_cells(corners_of({0, 1, 2, 3}), kParameters, base);
+  CellParameters p = kParameters;
+  p.time_coefficient = 16.0;
+  p.tau_c_factor = 0.1;
+  stabilized_cells(corners_of({0, 1, 2, 3}), p, scaled);
+  p.time_coefficient = 0.0;
+  p.tau_c_factor = 1.0;
+  stabilized_cells(corners_of({0, 1, 2, 3}), p, steady);
+  CellSystems no_dt;
+  stabilized_cells(corners_of({0, 1, 2, 3}), {.mass = 1.5e3, .dt = 0.0, .viscosity = 3.3e-6}, no_dt);
+  for (int l = 0; l < kCellLanes; ++l) {
+    const CellMetric m = metric_of(l);
+    const double tau_m = m.tau_m(16.0), trace = m.G.trace(), steady_tau_m = m.tau_m(0.0);
+    EXPECT_NEAR(scaled.tau_m[l], tau_m, 1e-14 * tau_m) << l;
+    EXPECT_LT(scaled.tau_m[l], kParameters.dt / 4.0) << l;  // C_t = 16 bounds it by dt / 4
+    EXPECT_NEAR(scaled.tau_c[l], 0.1 / (tau_m * trace), 1e-14 * 0.1 / (tau_m * trace)) << l;
+    EXPECT_LT(scaled.momentum[l], base.momentum[l]) << l;
+    EXPECT_NEAR(steady.tau_m[l], steady_tau_m, 1e-14 * steady_tau_m) << l;
+    EXPECT_EQ(steady.tau_m[l], no_dt.tau_m[l]) << l;  // C_t = 0: as without a time step
+    EXPECT_EQ(steady.cfl[l], base.cfl[l]) << l;        // the CFL number is the time step's still
   }
 }
 

@@ -79,6 +79,20 @@ TEST(WssIndices, PartlyReversingShearMatchesItsIntegrals) {
   EXPECT_NEAR(r.tawss[0], magnitude, 1e-6);
   EXPECT_NEAR(r.osi[0], 0.5 * (1.0 - a / magnitude), 1e-6);
   EXPECT_NEAR(r.rrt[0], 1.0 / a, 1e-5);
+  EXPECT_NEAR((r.mean[0] - Vec3(0, 0, a)).norm(), 0.0, 1e-9);  // the time mean: the vector's, a e_z
+}
+
+// The time-mean vector of a shear turning and reversing: (0.3 + cos wt, 0.1 + sin wt, -0.2) over a period
+// has the mean (0.3, 0.1, -0.2), whose length is TAWSS (1 - 2 OSI).
+TEST(WssIndices, TheMeanVectorIsTheTimeMean) {
+  const double T = 0.8, w = 2 * kPi / T;
+  const WssIndices r = over_one_period(T, 4000, [&](double t) {
+    return std::vector<Vec3>{Vec3(0.3 + std::cos(w * t), 0.1 + std::sin(w * t), -0.2), Vec3(1, 2, 3)};
+  });
+  ASSERT_EQ(r.mean.size(), 2u);
+  EXPECT_NEAR((r.mean[0] - Vec3(0.3, 0.1, -0.2)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR(r.mean[0].norm(), r.tawss[0] * (1.0 - 2.0 * r.osi[0]), 1e-12);
+  EXPECT_NEAR((r.mean[1] - Vec3(1, 2, 3)).norm(), 0.0, 1e-12);
 }
 
 TEST(WssIndices, RefusesTooFewOrDisorderedSamples) {
