@@ -188,8 +188,8 @@ struct OurWall {
   bool time_mean = false;
 };
 OurWall wall_of(const std::string& results, bool with_statistics) {
-  post::WallField last = post::read_wall_frame(post::read_wall_series(results).frames.back());
-  if (!with_statistics) return {std::move(last)};
+  const auto last = [&] { return OurWall{post::read_wall_frame(post::read_wall_series(results).frames.back())}; };
+  if (!with_statistics) return last();
   const nlohmann::json j = nlohmann::json::parse(io::read_file(results + "/summary.json"));
   const nlohmann::json& stats = j["statistics"];
   const double span = stats.value("end_s", 0.0) - stats.value("start_s", 0.0);
@@ -206,7 +206,7 @@ OurWall wall_of(const std::string& results, bool with_statistics) {
   }
   fmt::print("{}: no time-mean wall shear stress over the statistics' span (a run before it was written): the "
              "wall's last frame is compared\n", results);
-  return {std::move(last)};
+  return last();
 }
 
 // What the comparisons share: the laboratories, our flow (the time means when the run kept its
